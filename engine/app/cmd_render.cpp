@@ -1,0 +1,225 @@
+// meadow render / meadow bench: offscreen frames of a scene.
+#include "app/commands.h"
+#include "app/session.h"
+#include "core/error.h"
+#include "io/image_io.h"
+#include "render/offscreen.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <unistd.h>
+
+namespace meadow {
+namespace {
+
+const char* kRenderHelp = R"(usage: meadow render SCENE --out FILE [options]
+
+Renders frames of SCENE offscreen and writes them as PNG (tonemapped, 8-bit sRGB) or EXR
+(linear half-float radiance), by FILE's extension. Builds the scene's library first if the
+cache lacks it. With --frames N > 1, frame i goes to FILE with .NNNN before the extension.
+
+options:
+  --out FILE            output image (.png or .exr)
+  --frames N            frames to render, 1/30 s apart (default 1)
+  --size WxH            image size (default 1280x720)
+  --time-of-day H       local solar hour, 0-24 (default: the scene's)
+  --camera EX,EY,EZ,TX,TY,TZ   eye and target in metres (default: the scene's)
+  --preset ci|full      scene preset (default full)
+  --seed S              override the scene's seed
+  --device N|NAME       Vulkan device by index or part of its name (or MEADOW_DEVICE)
+  --validation          run under the Khronos validation layer, synchronization validation
+                        included (or MEADOW_VALIDATION=1); exits 3 if it reports anything
+  --verbose             say which device is used
+)";
+
+const char* kBenchHelp = R"(usage: meadow bench SCENE --json OUT [options]
+
+Renders frames offscreen and writes timings as JSON to OUT: frame times, CPU time per frame,
+GPU time per pass from timestamps, bytes uploaded per frame, triangles and instances drawn.
+
+options:
+  --clumps N            instances in the field: the scene's field is tiled (or cut) to N
+  --frames F            measured frames (default 120), after 5 warm-up frames
+  --size WxH            image size (default 1280x720)
+  --driver gpu|cpu      gpu: GPU-driven culling (the only path so far)
+  --preset, --seed, --device, --validation, --verbose   as for meadow render
+)";
+
+// The field's instances tiled (or cut) to `count`: copies of the whole field side by side.
+std::vector<gpu::GpuInstance> tileField(const std::vector<gpu::GpuInstance>& field, uint32_t count) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const gpu::GpuInstance& inst : field) {
+        lo = glm::min(lo, glm::vec3(inst.positionScale));
+        hi = glm::max(hi, glm::vec3(inst.positionScale));
+    }
+    glm::vec3 extent = hi - lo + glm::vec3(1.0f);
+    uint32_t tiles = static_cast<uint32_t>((count + field.size() - 1) / field.size());
+    uint32_t side = static_cast<uint32_t>(std::ceil(std::sqrt(double(tiles))));
+    std::vector<gpu::GpuInstance> out;
+    out.reserve(count);
+    for (uint32_t t = 0; out.size() < count; ++t) {
+        glm::vec3 offset(extent.x * (float(t % side) - float(side - 1) * 0.5f), 0.0f,
+                         extent.z * (float(t / side) - float(side - 1) * 0.5f));
+        for (const gpu::GpuInstance& inst : field) {
+            if (out.size() == count)
+                break;
+            gpu::GpuInstance copy = inst;
+            copy.positionScale += glm::vec4(offset, 0.0f);
+            out.push_back(copy);
+        }
+    }
+    return out;
+}
+
+double percentile(std::vector<double> values, double p) {
+    if (values.empty())
+        return 0.0;
+    std::sort(values.begin(), values.end());
+    size_t index = static_cast<size_t>(std::min<double>(values.size() - 1, std::floor(p * double(values.size() - 1) + 0.5)));
+    return values[index];
+}
+
+} // namespace
+
+int runRender(const Args& argv) {
+    if (printHelpIfAsked(argv, kRenderHelp))
+        return 0;
+    CommandSpec spec{"render", {"SCENE"}, {"--out", "--frames", "--size", "--time-of-day", "--camera"}, {}};
+    addSceneOptions(spec);
+    addEngineOptions(spec);
+    ParsedArgs args = parseArgs(spec, argv);
+
+    // Everything about the output is checked before any work starts.
+    if (!args.has("--out"))
+        throw Error("meadow render: --out FILE is required");
+    std::filesystem::path out = *args.value("--out");
+    ImageFileKind kind = imageKindForPath(out);
+    checkOutputWritable(out);
+    uint32_t frames = args.u32("--frames", 1, 1, 100000);
+    auto [width, height] = args.size("--size", {1280, 720});
+    Scene scene = sceneFromArgs(args);
+    float timeOfDay = args.f32("--time-of-day", scene.timeOfDay, 0.0f, 24.0f);
+    Camera camera = cameraFromArgs(args, scene);
+
+    Library library = ensureLibrary(scene);
+
+    Context ctx;
+    createContext(ctx, contextOptionsFromArgs(args));
+    int status = 0;
+    {
+        FieldRenderer renderer = createFieldRenderer(ctx, library.testMesh, library.testField);
+        Offscreen offscreen = createOffscreen(ctx, {width, height});
+        SkyState sky = skyForTimeOfDay(timeOfDay);
+        for (uint32_t i = 0; i < frames; ++i) {
+            gpu::GpuFrame frame = makeFrameUniforms(camera, float(width) / float(height), sky, renderer.instanceCount,
+                                                    renderer.indexCount, i);
+            renderOffscreenFrame(ctx, renderer, offscreen, frame);
+            std::filesystem::path path = framePath(out, i, frames);
+            if (kind == ImageFileKind::Png)
+                writeRgba8(path, width, height, readLdrPixels(ctx, offscreen.targets));
+            else
+                writeRgbaHalf(path, width, height, readHdrPixels(ctx, offscreen.targets));
+        }
+        FieldStats stats = readFieldStats(renderer);
+        std::fprintf(stderr, "meadow: rendered %u frame%s of %s at %ux%u on %s: %u of %u instances visible\n", frames,
+                     frames == 1 ? "" : "s", scene.name.c_str(), width, height, ctx.deviceName().c_str(),
+                     stats.visibleInstances, stats.testedInstances);
+        destroyOffscreen(ctx, offscreen);
+        destroyFieldRenderer(ctx, renderer);
+    }
+    status = validationExitStatus(ctx);
+    destroyContext(ctx);
+    return status;
+}
+
+int runBench(const Args& argv) {
+    if (printHelpIfAsked(argv, kBenchHelp))
+        return 0;
+    CommandSpec spec{"bench", {"SCENE"}, {"--json", "--clumps", "--frames", "--size", "--driver"}, {}};
+    addSceneOptions(spec);
+    addEngineOptions(spec);
+    ParsedArgs args = parseArgs(spec, argv);
+    if (!args.has("--json"))
+        throw Error("meadow bench: --json OUT is required");
+    std::filesystem::path out = *args.value("--json");
+    checkOutputWritable(out);
+    std::string driver = args.value("--driver").value_or("gpu");
+    if (driver == "cpu")
+        throw Error("meadow bench: --driver cpu: the CPU-driven comparison path does not exist yet; only gpu runs");
+    if (driver != "gpu")
+        throw Error("meadow bench: --driver '" + driver + "' is not gpu or cpu");
+    uint32_t frames = args.u32("--frames", 120, 1, 1000000);
+    auto [width, height] = args.size("--size", {1280, 720});
+    Scene scene = sceneFromArgs(args);
+    Library library = ensureLibrary(scene);
+    std::vector<gpu::GpuInstance> field = library.testField;
+    if (args.has("--clumps"))
+        field = tileField(field, args.u32("--clumps", 0, 1, 50'000'000));
+    Camera camera = cameraFromArgs(args, scene);
+
+    Context ctx;
+    createContext(ctx, contextOptionsFromArgs(args));
+    nlohmann::json j;
+    {
+        FieldRenderer renderer = createFieldRenderer(ctx, library.testMesh, field);
+        Offscreen offscreen = createOffscreen(ctx, {width, height});
+        SkyState sky = skyForTimeOfDay(scene.timeOfDay);
+        std::vector<double> frameMs, cpuMs;
+        std::map<std::string, std::vector<double>> passMs;
+        const uint32_t warmup = 5;
+        for (uint32_t i = 0; i < warmup + frames; ++i) {
+            gpu::GpuFrame frame = makeFrameUniforms(camera, float(width) / float(height), sky, renderer.instanceCount,
+                                                    renderer.indexCount, i);
+            FrameTimings t = renderOffscreenFrame(ctx, renderer, offscreen, frame);
+            if (i < warmup)
+                continue;
+            frameMs.push_back(t.wallMs);
+            cpuMs.push_back(t.cpuRecordSubmitMs);
+            double total = 0.0;
+            for (const PassTime& p : t.gpu) {
+                passMs[p.label].push_back(p.milliseconds);
+                total += p.milliseconds;
+            }
+            passMs["total"].push_back(total);
+        }
+        FieldStats stats = readFieldStats(renderer);
+        j["device"] = ctx.deviceName();
+        j["driver"] = driver;
+        j["vulkanDriver"] = ctx.driverDescription();
+        j["scene"] = scene.name;
+        j["preset"] = scene.preset;
+        j["width"] = width;
+        j["height"] = height;
+        j["clumps"] = renderer.instanceCount;
+        j["frames"] = frames;
+        j["frameMs"] = {{"median", percentile(frameMs, 0.5)}, {"p95", percentile(frameMs, 0.95)}};
+        nlohmann::json gpuMs = nlohmann::json::object();
+        for (auto& [label, values] : passMs)
+            gpuMs[label] = percentile(values, 0.5);
+        j["gpuMs"] = gpuMs;
+        j["cpuMsPerFrame"] = percentile(cpuMs, 0.5);
+        j["uploadBytesPerFrame"] = sizeof(gpu::GpuFrame);
+        j["trianglesPerFrame"] = stats.trianglesDrawn;
+        j["instancesPerLod"] = {stats.visibleInstances};
+        destroyOffscreen(ctx, offscreen);
+        destroyFieldRenderer(ctx, renderer);
+    }
+    int status = validationExitStatus(ctx);
+    destroyContext(ctx);
+
+    std::filesystem::path tmp = out;
+    tmp += ".partial";
+    {
+        std::ofstream file(tmp);
+        file << j.dump(2) << "\n";
+        if (!file)
+            throw Error("cannot write " + out.string());
+    }
+    std::filesystem::rename(tmp, out);
+    std::printf("%s\n", j.dump(2).c_str());
+    return status;
+}
+
+} // namespace meadow

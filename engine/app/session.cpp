@@ -1,0 +1,58 @@
+#include "app/session.h"
+
+#include "core/error.h"
+
+#include <cstdio>
+
+namespace meadow {
+
+void addEngineOptions(CommandSpec& spec) {
+    spec.valueOptions.insert("--device");
+    spec.switchOptions.insert("--validation");
+    spec.switchOptions.insert("--verbose");
+}
+
+void addSceneOptions(CommandSpec& spec) {
+    spec.valueOptions.insert("--preset");
+    spec.valueOptions.insert("--seed");
+}
+
+Scene sceneFromArgs(const ParsedArgs& args) {
+    std::optional<uint64_t> seed;
+    if (args.has("--seed"))
+        seed = args.u64("--seed", 0);
+    return loadScene(args.positionals.at(0), args.value("--preset").value_or("full"), seed);
+}
+
+ContextOptions contextOptionsFromArgs(const ParsedArgs& args) {
+    ContextOptions options;
+    options.validation = args.has("--validation") || validationRequestedByEnvironment();
+    options.deviceOverride = args.value("--device").value_or("");
+    options.verbose = args.has("--verbose");
+    return options;
+}
+
+Camera cameraFromArgs(const ParsedArgs& args, const Scene& scene) {
+    Camera camera;
+    camera.eye = scene.camera.eye;
+    camera.target = scene.camera.target;
+    camera.fovYDegrees = scene.camera.fovYDegrees;
+    if (auto v = args.floats("--camera", 6)) {
+        camera.eye = {(*v)[0], (*v)[1], (*v)[2]};
+        camera.target = {(*v)[3], (*v)[4], (*v)[5]};
+        if (glm::length(camera.target - camera.eye) < 1e-3f)
+            throw Error("meadow " + args.command + ": --camera: the target must differ from the eye");
+    }
+    return camera;
+}
+
+int validationExitStatus(const Context& ctx) {
+    if (!ctx.validationEnabled)
+        return 0;
+    const ValidationCounter& v = *ctx.validation;
+    std::fprintf(stderr, "meadow: validation layer on (synchronization validation included): %u messages (%u errors, %u warnings)\n",
+                 v.total(), v.errors.load(), v.warnings.load());
+    return v.total() == 0 ? 0 : kExitValidationFailed;
+}
+
+} // namespace meadow

@@ -1,0 +1,30 @@
+// What every command that renders shares: opening the Vulkan context from the command line,
+// turning scene + options into a camera and sky, and the validation verdict at exit.
+#pragma once
+
+#include "app/args.h"
+#include "library.h"
+#include "render/camera.h"
+#include "scene.h"
+#include "vk/context.h"
+
+namespace meadow {
+
+// Options every rendering command accepts.
+void addEngineOptions(CommandSpec& spec);
+// Options of commands that take a scene (--preset, --seed).
+void addSceneOptions(CommandSpec& spec);
+
+Scene sceneFromArgs(const ParsedArgs& args);
+ContextOptions contextOptionsFromArgs(const ParsedArgs& args);
+
+// The scene's camera, overridden by --camera EX,EY,EZ,TX,TY,TZ.
+Camera cameraFromArgs(const ParsedArgs& args, const Scene& scene);
+
+// Prints the validation summary when validation ran; returns the exit status to use: 0, or 3
+// when the layer reported anything.
+int validationExitStatus(const Context& context);
+
+inline constexpr int kExitValidationFailed = 3;
+
+} // namespace meadow

@@ -1,0 +1,69 @@
+// The library container: one binary file per scene (DESIGN.md section 2.9).
+//
+// Layout, all integers little-endian whatever the machine:
+//   header   magic "MEADOWLB" (8 bytes), u32 formatVersion, u32 sectionCount, u64 inputHash,
+//            u64 tableChecksum (FNV-1a 64 of the section table)
+//   table    sectionCount x { u32 tag (four characters), u32 reserved (0), u64 offset, u64 size,
+//            u64 checksum (FNV-1a 64 of the section's bytes) }
+//   payload  the sections' bytes, each starting on an 8-byte boundary
+// `inputHash` identifies what the library was built from (scene, preset, seed, format), so a
+// cache can tell a stale library from a current one without decoding it.
+// Reading validates everything and throws meadow::Error naming the file and the problem.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace meadow {
+
+inline constexpr uint32_t kLibraryFormatVersion = 1;
+
+uint64_t fnv1a64(const void* data, size_t size, uint64_t seed = 0xcbf29ce484222325ull);
+
+struct LibraryFile {
+    uint32_t formatVersion = kLibraryFormatVersion;
+    uint64_t inputHash = 0;
+    std::map<std::string, std::vector<uint8_t>> sections; // tag (4 characters) -> bytes
+    uint64_t fileBytes = 0;                               // set by readLibraryFile
+};
+
+// Writes atomically: a temporary file beside `path`, renamed into place when complete.
+void writeLibraryFile(const std::filesystem::path& path, const LibraryFile& library);
+LibraryFile readLibraryFile(const std::filesystem::path& path);
+// Only the header's input hash, or nothing if the file is missing or not a library.
+bool peekLibraryInputHash(const std::filesystem::path& path, uint64_t& inputHash);
+
+// Little-endian encoding of plain values into section bytes, and decoding with bounds checks.
+class ByteWriter {
+public:
+    void u32(uint32_t v);
+    void u64(uint64_t v);
+    void f32(float v);
+    void bytes(const void* data, size_t size);
+    std::vector<uint8_t> take() { return std::move(data_); }
+
+private:
+    std::vector<uint8_t> data_;
+};
+
+class ByteReader {
+public:
+    ByteReader(const std::vector<uint8_t>& data, std::string context) : data_(data), context_(std::move(context)) {}
+    uint32_t u32();
+    uint64_t u64();
+    float f32();
+    void bytes(void* out, size_t size);
+    size_t remaining() const { return data_.size() - at_; }
+    // Throws unless every byte was consumed.
+    void expectEnd() const;
+
+private:
+    const std::vector<uint8_t>& data_;
+    std::string context_;
+    size_t at_ = 0;
+};
+
+} // namespace meadow

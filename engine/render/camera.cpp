@@ -1,0 +1,73 @@
+#include "render/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace meadow {
+
+glm::mat4 viewMatrix(const Camera& c) {
+    return glm::lookAtRH(c.eye, c.target, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+glm::mat4 projectionMatrix(const Camera& c, float aspect) {
+    float f = 1.0f / std::tan(glm::radians(c.fovYDegrees) * 0.5f);
+    glm::mat4 p(0.0f);
+    p[0][0] = f / aspect;
+    p[1][1] = -f;          // Vulkan's y points down
+    p[2][3] = -1.0f;       // w_clip = -z_view
+    p[3][2] = c.nearPlane; // z_clip = near: depth = near / distance (reversed, infinite)
+    return p;
+}
+
+std::array<glm::vec4, 6> frustumPlanes(const Camera& c, const glm::mat4& m) {
+    // Rows of the (column-major) matrix.
+    glm::vec4 r0(m[0][0], m[1][0], m[2][0], m[3][0]);
+    glm::vec4 r1(m[0][1], m[1][1], m[2][1], m[3][1]);
+    glm::vec4 r2(m[0][2], m[1][2], m[2][2], m[3][2]);
+    glm::vec4 r3(m[0][3], m[1][3], m[2][3], m[3][3]);
+    std::array<glm::vec4, 6> planes = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 - r2, glm::vec4(0.0f)};
+    for (int i = 0; i < 5; ++i)
+        planes[i] /= glm::length(glm::vec3(planes[i]));
+    glm::vec3 forward = glm::normalize(c.target - c.eye);
+    planes[5] = glm::vec4(-forward, glm::dot(forward, c.eye) + c.farCull);
+    return planes;
+}
+
+SkyState skyForTimeOfDay(float hours) {
+    // A simple sun path: rises in the east at 6, highest (60 degrees) at noon, sets at 18.
+    float dayPhase = (hours - 6.0f) / 12.0f * glm::pi<float>();
+    float elevation = glm::radians(60.0f) * std::sin(dayPhase);
+    float azimuth = dayPhase; // from east (+x) over south (-z) to west (-x)
+    SkyState s;
+    s.sunDirection = glm::normalize(glm::vec3(std::cos(azimuth) * std::cos(elevation), std::sin(elevation),
+                                              -std::sin(azimuth) * std::cos(elevation) * 0.6f));
+    float day = glm::smoothstep(-0.1f, 0.25f, std::sin(elevation));
+    float low = 1.0f - glm::smoothstep(0.0f, 0.5f, std::sin(elevation));
+    s.sunIntensity = 3.0f * day;
+    s.sunColor = glm::mix(glm::vec3(1.0f, 0.96f, 0.9f), glm::vec3(1.0f, 0.55f, 0.3f), low);
+    s.zenith = glm::mix(glm::vec3(0.01f, 0.012f, 0.03f), glm::vec3(0.25f, 0.45f, 0.9f), day);
+    s.horizon = glm::mix(glm::vec3(0.02f, 0.02f, 0.04f), glm::mix(glm::vec3(0.65f, 0.75f, 0.9f),
+                                                                   glm::vec3(0.9f, 0.6f, 0.4f), low * 0.7f), day);
+    s.exposure = glm::mix(4.0f, 0.8f, day);
+    return s;
+}
+
+gpu::GpuFrame makeFrameUniforms(const Camera& camera, float aspect, const SkyState& sky, uint32_t instanceCount,
+                                uint32_t indicesPerMesh, uint32_t frameIndex) {
+    gpu::GpuFrame f{};
+    f.viewProj = projectionMatrix(camera, aspect) * viewMatrix(camera);
+    f.inverseViewProj = glm::inverse(f.viewProj);
+    std::array<glm::vec4, 6> planes = frustumPlanes(camera, f.viewProj);
+    for (int i = 0; i < 6; ++i)
+        f.frustumPlanes[i] = planes[i];
+    f.cameraPosition = glm::vec4(camera.eye, 1.0f);
+    f.sunDirection = glm::vec4(sky.sunDirection, sky.sunIntensity);
+    f.sunColor = glm::vec4(sky.sunColor, 0.0f);
+    f.skyZenith = glm::vec4(sky.zenith, sky.exposure);
+    f.skyHorizon = glm::vec4(sky.horizon, 0.0f);
+    f.counts = glm::uvec4(instanceCount, indicesPerMesh, frameIndex, 0u);
+    return f;
+}
+
+} // namespace meadow

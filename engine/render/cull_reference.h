@@ -1,0 +1,24 @@
+// CPU reference of shaders/cull.comp.glsl, for tests and for the CPU-driven comparison path.
+#pragma once
+
+#include "gpu_types.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace meadow {
+
+// The bounding sphere the cull pass tests for one instance: centred half a radius above the
+// base. Returns false when the sphere lies wholly outside one of the planes.
+bool instanceVisible(const gpu::GpuFrame& frame, const gpu::GpuInstance& instance);
+
+// Signed margin of the decision: the smallest (distance to plane + radius) over the planes.
+// Instances whose margin is within a few ulps of zero may be classified either way by a
+// different floating-point evaluation order; tests treat those as conservative cases.
+float visibilityMargin(const gpu::GpuFrame& frame, const gpu::GpuInstance& instance);
+
+// Indices of the visible instances, ascending.
+std::vector<uint32_t> cullReference(const gpu::GpuFrame& frame, std::span<const gpu::GpuInstance> instances);
+
+} // namespace meadow

@@ -1,0 +1,166 @@
+#include "render/field_renderer.h"
+
+#include "vk/barriers.h"
+#include "vk/context.h"
+#include "vk/timestamps.h"
+#include "vk/vk_check.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace meadow {
+
+FieldRenderer createFieldRenderer(Context& ctx, const Mesh& mesh, std::span<const gpu::GpuInstance> instances) {
+    if (instances.empty())
+        throw Error("the field has no instances to draw");
+    FieldRenderer r;
+    r.instanceCount = static_cast<uint32_t>(instances.size());
+    r.indexCount = static_cast<uint32_t>(mesh.indices.size());
+
+    r.cull = createComputePipeline(ctx, "cull.comp");
+    r.tonemap = createComputePipeline(ctx, "tonemap.comp");
+    GraphicsPipelineDesc skyDesc{"sky.vert", "sky.frag", kHdrFormat, kDepthFormat};
+    skyDesc.depthTest = false;
+    skyDesc.depthWrite = false;
+    r.sky = createGraphicsPipeline(ctx, skyDesc);
+    GraphicsPipelineDesc groundDesc{"ground.vert", "ground.frag", kHdrFormat, kDepthFormat};
+    groundDesc.pushConstantSize = sizeof(glm::vec4);
+    r.ground = createGraphicsPipeline(ctx, groundDesc);
+    r.instance = createGraphicsPipeline(ctx, GraphicsPipelineDesc{"instance.vert", "instance.frag", kHdrFormat, kDepthFormat});
+
+    const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    r.frameUniforms = createBuffer(ctx, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload);
+    r.instances = createBuffer(ctx, instances.size_bytes(), storage, MemoryUse::Device);
+    r.vertices = createBuffer(ctx, mesh.vertices.size() * sizeof(gpu::GpuVertex), storage, MemoryUse::Device);
+    r.indices = createBuffer(ctx, mesh.indices.size() * sizeof(uint32_t),
+                             VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
+    r.drawCommand = createBuffer(ctx, sizeof(gpu::GpuDrawIndexedCommand),
+                                 storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                 MemoryUse::Device);
+    r.visibleList = createBuffer(ctx, instances.size() * sizeof(uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                 MemoryUse::Device);
+    r.stats = createBuffer(ctx, sizeof(gpu::GpuCullStats), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device);
+    r.statsReadback = createBuffer(ctx, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+    std::memset(r.statsReadback.mapped(), 0, sizeof(gpu::GpuCullStats));
+
+    uploadToBuffer(ctx, r.instances, instances.data(), instances.size_bytes());
+    uploadToBuffer(ctx, r.vertices, mesh.vertices.data(), r.vertices.size);
+    uploadToBuffer(ctx, r.indices, mesh.indices.data(), r.indices.size);
+    gpu::GpuDrawIndexedCommand draw{r.indexCount, 0, 0, 0, 0};
+    uploadToBuffer(ctx, r.drawCommand, &draw, sizeof(draw));
+
+    // The ground covers the field's extent with a wide margin so its edge stays out of view.
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const gpu::GpuInstance& inst : instances) {
+        lo = glm::min(lo, glm::vec3(inst.positionScale));
+        hi = glm::max(hi, glm::vec3(inst.positionScale));
+    }
+    glm::vec3 center = (lo + hi) * 0.5f;
+    float half = std::max(hi.x - lo.x, hi.z - lo.z) * 0.5f;
+    r.groundCenterHalfSize = glm::vec4(center.x, lo.y, center.z, half + 1000.0f);
+    return r;
+}
+
+void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
+    for (Pipeline* p : {&r.cull, &r.tonemap, &r.sky, &r.ground, &r.instance})
+        destroyPipeline(ctx, *p);
+    for (Buffer* b : {&r.frameUniforms, &r.instances, &r.vertices, &r.indices, &r.drawCommand, &r.visibleList, &r.stats,
+                      &r.statsReadback})
+        destroyBuffer(ctx, *b);
+    r = FieldRenderer{};
+}
+
+void updateFrameUniforms(FieldRenderer& r, const gpu::GpuFrame& frame) {
+    std::memcpy(r.frameUniforms.mapped(), &frame, sizeof(frame));
+}
+
+void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t, GpuTimer* timer) {
+    if (timer)
+        beginTimestamps(ctx, *timer, cmd);
+
+    // Reset the draw's instance count and the statistics. The previous frame read them as an
+    // indirect command, in the vertex shader and as a copy source.
+    barrier(cmd, access::kIndirectRead | access::kVertexShaderRead | access::kComputeReadWrite | access::kTransferRead,
+            access::kTransferWrite);
+    vkCmdFillBuffer(cmd, r.drawCommand.buffer, offsetof(gpu::GpuDrawIndexedCommand, instanceCount), sizeof(uint32_t), 0);
+    vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
+    barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
+
+    bindPipeline(ctx, cmd, r.cull, {r.frameUniforms, r.instances, r.drawCommand, r.visibleList, r.stats});
+    dispatchCovering(cmd, r.cull, r.instanceCount);
+    if (timer)
+        markTimestamp(*timer, cmd, "cull");
+
+    barrier(cmd, access::kComputeReadWrite, access::kIndirectRead | access::kVertexShaderRead);
+    // The previous frame's tonemap read the HDR image and wrote the LDR image; the contents are
+    // not needed again, so both start from UNDEFINED.
+    imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeRead | access::kTransferRead,
+                 VK_IMAGE_LAYOUT_UNDEFINED, access::kColorAttachmentWrite, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kDepthAttachment, VK_IMAGE_LAYOUT_UNDEFINED,
+                 access::kDepthAttachment, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = t.hdr.view;
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE; // the sky covers every pixel
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = t.depth.view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.clearValue.depthStencil = {0.0f, 0}; // reversed Z: 0 is infinitely far
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, t.extent};
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachments = &color;
+    rendering.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &rendering);
+
+    VkViewport viewport{0.0f, 0.0f, float(t.extent.width), float(t.extent.height), 0.0f, 1.0f};
+    VkRect2D scissor{{0, 0}, t.extent};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+
+    bindPipeline(ctx, cmd, r.sky, {r.frameUniforms});
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+
+    bindPipeline(ctx, cmd, r.ground, {r.frameUniforms});
+    vkCmdPushConstants(cmd, r.ground.layout, r.ground.pushConstantStages, 0, sizeof(glm::vec4), &r.groundCenterHalfSize);
+    vkCmdDraw(cmd, 6, 1, 0, 0);
+
+    bindPipeline(ctx, cmd, r.instance, {r.frameUniforms, r.instances, r.visibleList, r.vertices});
+    vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexedIndirect(cmd, r.drawCommand.buffer, 0, 1, sizeof(gpu::GpuDrawIndexedCommand));
+    vkCmdEndRendering(cmd);
+    if (timer)
+        markTimestamp(*timer, cmd, "draw");
+
+    imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
+    imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite | access::kTransferRead,
+                 VK_IMAGE_LAYOUT_UNDEFINED, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL);
+    bindPipeline(ctx, cmd, r.tonemap,
+                 {r.frameUniforms, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL), Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
+    dispatchCovering(cmd, r.tonemap, t.extent.width, t.extent.height);
+    if (timer)
+        markTimestamp(*timer, cmd, "tonemap");
+
+    barrier(cmd, access::kComputeReadWrite, access::kTransferRead);
+    VkBufferCopy region{0, 0, sizeof(gpu::GpuCullStats)};
+    vkCmdCopyBuffer(cmd, r.stats.buffer, r.statsReadback.buffer, 1, &region);
+    barrier(cmd, access::kTransferWrite, access::kHostRead);
+}
+
+FieldStats readFieldStats(const FieldRenderer& r) {
+    gpu::GpuCullStats s;
+    std::memcpy(&s, r.statsReadback.mapped(), sizeof(s));
+    FieldStats out;
+    out.visibleInstances = s.visibleInstances;
+    out.testedInstances = s.testedInstances;
+    out.trianglesDrawn = uint64_t(s.visibleInstances) * (r.indexCount / 3) + 2 + 1;
+    return out;
+}
+
+} // namespace meadow

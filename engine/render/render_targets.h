@@ -1,0 +1,32 @@
+// The images one frame renders into: linear HDR colour, reversed-Z depth, and the tonemapped
+// 8-bit image that is written to PNG or blitted to a window.
+#pragma once
+
+#include "vk/memory.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace meadow {
+
+inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM; // values already sRGB-encoded
+
+struct RenderTargets {
+    VkExtent2D extent{};
+    Image hdr;
+    Image depth;
+    Image ldr;
+};
+
+// Throws meadow::Error when the device cannot use the formats as meadow needs.
+RenderTargets createRenderTargets(Context& context, VkExtent2D extent);
+void destroyRenderTargets(Context& context, RenderTargets& targets);
+
+// Pixels of the frame just rendered, after its commands completed: 8-bit RGBA (tonemapped) or
+// half-float RGBA (linear HDR). Records and waits on its own command buffer.
+std::vector<uint8_t> readLdrPixels(Context& context, const RenderTargets& targets);
+std::vector<uint16_t> readHdrPixels(Context& context, const RenderTargets& targets);
+
+} // namespace meadow

@@ -1,0 +1,43 @@
+// Compile-time proof that the C++ view of shaders/shared/gpu_types.h matches the std140/std430
+// layout the shaders see. A failing assert here means the header gained a member that the two
+// languages lay out differently.
+#include "gpu_types.h"
+
+#include <cstddef>
+#include <vulkan/vulkan.h>
+
+namespace meadow::gpu {
+
+static_assert(sizeof(vec4) == 16 && sizeof(mat4) == 64 && sizeof(uvec4) == 16);
+
+static_assert(offsetof(GpuFrame, viewProj) == 0);
+static_assert(offsetof(GpuFrame, inverseViewProj) == 64);
+static_assert(offsetof(GpuFrame, frustumPlanes) == 128);
+static_assert(offsetof(GpuFrame, cameraPosition) == 224);
+static_assert(offsetof(GpuFrame, sunDirection) == 240);
+static_assert(offsetof(GpuFrame, sunColor) == 256);
+static_assert(offsetof(GpuFrame, skyZenith) == 272);
+static_assert(offsetof(GpuFrame, skyHorizon) == 288);
+static_assert(offsetof(GpuFrame, counts) == 304);
+static_assert(sizeof(GpuFrame) == 320);
+
+static_assert(offsetof(GpuInstance, positionScale) == 0);
+static_assert(offsetof(GpuInstance, boundsTint) == 16);
+static_assert(sizeof(GpuInstance) == 32);
+
+static_assert(offsetof(GpuVertex, positionU) == 0);
+static_assert(offsetof(GpuVertex, normalV) == 16);
+static_assert(sizeof(GpuVertex) == 32);
+
+static_assert(sizeof(GpuDrawIndexedCommand) == sizeof(VkDrawIndexedIndirectCommand));
+static_assert(offsetof(GpuDrawIndexedCommand, indexCount) == offsetof(VkDrawIndexedIndirectCommand, indexCount));
+static_assert(offsetof(GpuDrawIndexedCommand, instanceCount) == offsetof(VkDrawIndexedIndirectCommand, instanceCount));
+static_assert(offsetof(GpuDrawIndexedCommand, firstIndex) == offsetof(VkDrawIndexedIndirectCommand, firstIndex));
+static_assert(offsetof(GpuDrawIndexedCommand, vertexOffset) == offsetof(VkDrawIndexedIndirectCommand, vertexOffset));
+static_assert(offsetof(GpuDrawIndexedCommand, firstInstance) == offsetof(VkDrawIndexedIndirectCommand, firstInstance));
+
+static_assert(offsetof(GpuCullStats, visibleInstances) == 0);
+static_assert(offsetof(GpuCullStats, testedInstances) == 4);
+static_assert(sizeof(GpuCullStats) == 16);
+
+} // namespace meadow::gpu

@@ -1,0 +1,207 @@
+#include "vk/memory.h"
+
+#include "vk/barriers.h"
+#include "vk/context.h"
+#include "vk/vk_check.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+
+namespace meadow {
+
+MemoryAllocator::MemoryAllocator(Context& context) : context_(context) {
+    blocks_.resize(context.memoryProperties.memoryTypeCount);
+}
+
+MemoryAllocator::~MemoryAllocator() {
+    for (auto& typeBlocks : blocks_)
+        for (Block& block : typeBlocks)
+            if (block.memory)
+                vkFreeMemory(context_.device, block.memory, nullptr);
+}
+
+uint32_t MemoryAllocator::chooseMemoryType(uint32_t typeBits, MemoryUse use) const {
+    const VkPhysicalDeviceMemoryProperties& mp = context_.memoryProperties;
+    VkMemoryPropertyFlags required = 0;
+    VkMemoryPropertyFlags preferred = 0;
+    switch (use) {
+    case MemoryUse::Device: preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
+    case MemoryUse::Upload:
+        required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        break;
+    case MemoryUse::Readback:
+        required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        preferred = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+        break;
+    }
+    int fallback = -1;
+    for (uint32_t i = 0; i < mp.memoryTypeCount; ++i) {
+        if (!(typeBits & (1u << i)) || (mp.memoryTypes[i].propertyFlags & required) != required)
+            continue;
+        if ((mp.memoryTypes[i].propertyFlags & preferred) == preferred)
+            return i;
+        if (fallback < 0)
+            fallback = static_cast<int>(i);
+    }
+    if (fallback < 0)
+        throw Error("no Vulkan memory type fits a resource (type bits " + std::to_string(typeBits) + ")");
+    return static_cast<uint32_t>(fallback);
+}
+
+Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUse use) {
+    uint32_t type = chooseMemoryType(req.memoryTypeBits, use);
+    VkDeviceSize alignment = std::max<VkDeviceSize>(req.alignment, context_.properties.limits.bufferImageGranularity);
+    VkMemoryPropertyFlags flags = context_.memoryProperties.memoryTypes[type].propertyFlags;
+    if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
+        alignment = std::max<VkDeviceSize>(alignment, context_.properties.limits.nonCoherentAtomSize);
+
+    std::vector<Block>& typeBlocks = blocks_[type];
+    for (uint32_t b = 0; b < typeBlocks.size(); ++b) {
+        Block& block = typeBlocks[b];
+        if (!block.memory)
+            continue;
+        if (auto offset = block.ranges->allocate(req.size, alignment)) {
+            bytesInUse_ += req.size;
+            return {block.memory, *offset, req.size, type, b,
+                    block.mapped ? static_cast<char*>(block.mapped) + *offset : nullptr};
+        }
+    }
+
+    Block block;
+    VkDeviceSize size = std::max(kBlockSize, req.size);
+    VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    info.allocationSize = size;
+    info.memoryTypeIndex = type;
+    VkResult r = vkAllocateMemory(context_.device, &info, nullptr, &block.memory);
+    if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
+        throw Error("out of memory allocating a " + std::to_string(size >> 20) + " MiB Vulkan memory block (" +
+                    vkResultName(r) + ")");
+    VK_CHECK(r);
+    if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
+        VK_CHECK(vkMapMemory(context_.device, block.memory, 0, VK_WHOLE_SIZE, 0, &block.mapped));
+    block.ranges = std::make_unique<RangeAllocator>(size);
+    [[maybe_unused]] auto offset = block.ranges->allocate(req.size, alignment);
+    assert(offset && *offset == 0);
+
+    // Reuse a slot freed earlier so block indices held by live allocations stay valid.
+    uint32_t index = 0;
+    while (index < typeBlocks.size() && typeBlocks[index].memory)
+        ++index;
+    if (index == typeBlocks.size())
+        typeBlocks.push_back(std::move(block));
+    else
+        typeBlocks[index] = std::move(block);
+    Block& placed = typeBlocks[index];
+    bytesInUse_ += req.size;
+    return {placed.memory, 0, req.size, type, index, placed.mapped};
+}
+
+void MemoryAllocator::free(const Allocation& a) {
+    if (!a.memory)
+        return;
+    Block& block = blocks_[a.memoryType][a.block];
+    assert(block.memory == a.memory);
+    block.ranges->free(a.offset, a.size);
+    bytesInUse_ -= a.size;
+    // A block larger than the standard size served one big resource: give it back at once.
+    if (block.ranges->empty() && block.ranges->size() > kBlockSize) {
+        vkFreeMemory(context_.device, block.memory, nullptr);
+        block = Block{};
+    }
+}
+
+Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use) {
+    Buffer buffer;
+    buffer.size = size;
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = size;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VK_CHECK(vkCreateBuffer(ctx.device, &info, nullptr, &buffer.buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx.device, buffer.buffer, &req);
+    buffer.allocation = ctx.memory->allocate(req, use);
+    VK_CHECK(vkBindBufferMemory(ctx.device, buffer.buffer, buffer.allocation.memory, buffer.allocation.offset));
+    return buffer;
+}
+
+void destroyBuffer(Context& ctx, Buffer& buffer) {
+    if (buffer.buffer)
+        vkDestroyBuffer(ctx.device, buffer.buffer, nullptr);
+    ctx.memory->free(buffer.allocation);
+    buffer = Buffer{};
+}
+
+Image createImage2D(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage) {
+    Image image;
+    image.format = format;
+    image.extent = extent;
+    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = format;
+    info.extent = {extent.width, extent.height, 1};
+    info.mipLevels = 1;
+    info.arrayLayers = 1;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = usage;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VK_CHECK(vkCreateImage(ctx.device, &info, nullptr, &image.image));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(ctx.device, image.image, &req);
+    image.allocation = ctx.memory->allocate(req, MemoryUse::Device);
+    VK_CHECK(vkBindImageMemory(ctx.device, image.image, image.allocation.memory, image.allocation.offset));
+
+    bool depth = format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM;
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image.image;
+    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = format;
+    viewInfo.subresourceRange = {static_cast<VkImageAspectFlags>(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
+                                 0, 1, 0, 1};
+    VK_CHECK(vkCreateImageView(ctx.device, &viewInfo, nullptr, &image.view));
+    return image;
+}
+
+void destroyImage(Context& ctx, Image& image) {
+    if (image.view)
+        vkDestroyImageView(ctx.device, image.view, nullptr);
+    if (image.image)
+        vkDestroyImage(ctx.device, image.image, nullptr);
+    ctx.memory->free(image.allocation);
+    image = Image{};
+}
+
+void uploadToBuffer(Context& ctx, const Buffer& destination, const void* data, VkDeviceSize size,
+                    VkDeviceSize destinationOffset) {
+    if (size == 0)
+        return;
+    Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+    std::memcpy(staging.mapped(), data, size);
+    submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+        // Earlier submissions may still read or write the destination; later ones may use it
+        // in any way.
+        barrier(cmd, access::kAnyCommand, access::kTransferWrite);
+        VkBufferCopy region{0, destinationOffset, size};
+        vkCmdCopyBuffer(cmd, staging.buffer, destination.buffer, 1, &region);
+        barrier(cmd, access::kTransferWrite, access::kAnyCommand);
+    });
+    destroyBuffer(ctx, staging);
+}
+
+void readbackBuffer(Context& ctx, const Buffer& source, void* data, VkDeviceSize size, VkDeviceSize sourceOffset) {
+    if (size == 0)
+        return;
+    Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+    submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+        barrier(cmd, access::kAnyCommand, access::kTransferRead);
+        VkBufferCopy region{sourceOffset, 0, size};
+        vkCmdCopyBuffer(cmd, source.buffer, staging.buffer, 1, &region);
+        barrier(cmd, access::kTransferWrite, access::kHostRead);
+    });
+    std::memcpy(data, staging.mapped(), size);
+    destroyBuffer(ctx, staging);
+}
+
+} // namespace meadow

@@ -1,0 +1,90 @@
+// Buffers and images, sub-allocated from large VkDeviceMemory blocks, plus upload and readback.
+//
+// The allocator keeps, per memory type, a list of blocks (kBlockSize each, or one block the size
+// of a larger request), each with a first-fit RangeAllocator. Host-visible blocks stay mapped
+// for their whole life. Every allocation is aligned to at least bufferImageGranularity so
+// buffers and optimal-tiling images may share a block. Callers own what they create and destroy
+// it before the context.
+#pragma once
+
+#include "vk/range_allocator.h"
+
+#include <memory>
+#include <vector>
+#include <vulkan/vulkan.h>
+
+namespace meadow {
+
+struct Context;
+
+enum class MemoryUse {
+    Device,   // device-local, filled by uploads or GPU passes
+    Upload,   // host-visible and coherent, written by the CPU (uniforms, staging)
+    Readback, // host-visible, preferably cached, read by the CPU
+};
+
+struct Allocation {
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize offset = 0;
+    VkDeviceSize size = 0;
+    uint32_t memoryType = 0;
+    uint32_t block = 0;
+    void* mapped = nullptr; // host pointer to this allocation when host-visible
+};
+
+class MemoryAllocator {
+public:
+    static constexpr VkDeviceSize kBlockSize = 64ull << 20;
+
+    explicit MemoryAllocator(Context& context);
+    ~MemoryAllocator();
+    MemoryAllocator(const MemoryAllocator&) = delete;
+    MemoryAllocator& operator=(const MemoryAllocator&) = delete;
+
+    Allocation allocate(const VkMemoryRequirements& requirements, MemoryUse use);
+    void free(const Allocation& allocation);
+
+    VkDeviceSize bytesInUse() const { return bytesInUse_; }
+
+private:
+    struct Block {
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        void* mapped = nullptr;
+        std::unique_ptr<RangeAllocator> ranges;
+    };
+    uint32_t chooseMemoryType(uint32_t typeBits, MemoryUse use) const;
+
+    Context& context_;
+    std::vector<std::vector<Block>> blocks_; // [memoryType][block]
+    VkDeviceSize bytesInUse_ = 0;
+};
+
+struct Buffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceSize size = 0;
+    Allocation allocation;
+    void* mapped() const { return allocation.mapped; }
+};
+
+struct Image {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkExtent2D extent{};
+    Allocation allocation;
+};
+
+Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use);
+void destroyBuffer(Context& context, Buffer& buffer);
+
+Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage);
+void destroyImage(Context& context, Image& image);
+
+// Copies `size` bytes into a device-local buffer through a temporary staging buffer and waits.
+void uploadToBuffer(Context& context, const Buffer& destination, const void* data, VkDeviceSize size,
+                    VkDeviceSize destinationOffset = 0);
+// Copies `size` bytes of a buffer back to host memory and waits.
+void readbackBuffer(Context& context, const Buffer& source, void* data, VkDeviceSize size,
+                    VkDeviceSize sourceOffset = 0);
+
+} // namespace meadow

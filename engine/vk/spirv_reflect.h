@@ -1,0 +1,25 @@
+// Reads back from a SPIR-V module what the host would otherwise repeat by hand: the stage, the
+// compute workgroup size, and the descriptor bindings (set 0 only: meadow uses push
+// descriptors), so pipeline layouts always match their shaders.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <vulkan/vulkan.h>
+
+namespace meadow {
+
+struct ShaderReflection {
+    VkShaderStageFlagBits stage = VK_SHADER_STAGE_ALL;
+    uint32_t localSize[3] = {0, 0, 0};           // compute only
+    std::map<uint32_t, VkDescriptorType> bindings; // binding index -> type
+    bool usesPushConstants = false;
+};
+
+// Throws meadow::Error naming `name` when the module is malformed or uses what meadow does not
+// support (a descriptor set other than 0, an unknown resource type).
+ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string& name);
+
+} // namespace meadow

@@ -1,0 +1,156 @@
+#include "scene.h"
+
+#include "core/error.h"
+
+#include <fstream>
+#include <set>
+
+namespace meadow {
+namespace {
+
+using nlohmann::json;
+
+class Checker {
+public:
+    explicit Checker(std::string file) : file_(std::move(file)) {}
+
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+        throw Error("scene " + file_ + ": " + key + " " + what);
+    }
+
+    void onlyKeys(const json& object, const std::string& where, const std::set<std::string>& allowed) const {
+        if (!object.is_object())
+            fail(where.empty() ? "the top level" : where, "must be an object");
+        for (auto it = object.begin(); it != object.end(); ++it)
+            if (!allowed.count(it.key()))
+                fail(where.empty() ? it.key() : where + "." + it.key(), "is not a known key");
+    }
+
+    const json& require(const json& object, const std::string& where, const std::string& key) const {
+        auto it = object.find(key);
+        if (it == object.end())
+            fail(where.empty() ? key : where + "." + key, "is missing");
+        return *it;
+    }
+
+    float number(const json& v, const std::string& key, float lo, float hi) const {
+        if (!v.is_number())
+            fail(key, "must be a number (got " + v.dump() + ")");
+        double d = v.get<double>();
+        if (!(d >= lo && d <= hi))
+            fail(key, "must be between " + fmt(lo) + " and " + fmt(hi) + " (got " + v.dump() + ")");
+        return static_cast<float>(d);
+    }
+
+    uint32_t count(const json& v, const std::string& key, uint32_t lo, uint32_t hi) const {
+        if (!v.is_number_integer())
+            fail(key, "must be an integer (got " + v.dump() + ")");
+        int64_t i = v.get<int64_t>();
+        if (i < lo || i > hi)
+            fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " + v.dump() + ")");
+        return static_cast<uint32_t>(i);
+    }
+
+    glm::vec3 vec3(const json& v, const std::string& key) const {
+        if (!v.is_array() || v.size() != 3)
+            fail(key, "must be an array of three numbers (got " + v.dump() + ")");
+        return {number(v[0], key + "[0]", -1e6f, 1e6f), number(v[1], key + "[1]", -1e6f, 1e6f),
+                number(v[2], key + "[2]", -1e6f, 1e6f)};
+    }
+
+private:
+    static std::string fmt(float f) {
+        json j = f;
+        return j.dump();
+    }
+    std::string file_;
+};
+
+} // namespace
+
+Scene loadScene(const std::filesystem::path& path, const std::string& preset, std::optional<uint64_t> seed) {
+    Checker check(path.string());
+    bool knownPreset = false;
+    for (const char* name : kPresetNames)
+        knownPreset |= preset == name;
+    if (!knownPreset)
+        throw Error("unknown preset '" + preset + "' (use ci or full)");
+
+    std::ifstream in(path);
+    if (!in)
+        throw Error("scene " + path.string() + ": cannot open");
+    json doc;
+    try {
+        doc = json::parse(in);
+    } catch (const json::parse_error& e) {
+        throw Error("scene " + path.string() + ": invalid JSON: " + e.what());
+    }
+    check.onlyKeys(doc, "", {"name", "description", "seed", "presets", "testField", "camera", "timeOfDay"});
+
+    // Merge the preset's overrides over the base description.
+    json resolved = doc;
+    resolved.erase("presets");
+    if (doc.contains("presets")) {
+        const json& presets = doc["presets"];
+        check.onlyKeys(presets, "presets", {"ci", "full"});
+        if (presets.contains(preset)) {
+            if (!presets[preset].is_object())
+                check.fail("presets." + preset, "must be an object");
+            if (presets[preset].contains("presets"))
+                check.fail("presets." + preset + ".presets", "is not allowed");
+            resolved.merge_patch(presets[preset]);
+        }
+    }
+
+    Scene scene;
+    scene.path = path;
+    scene.preset = preset;
+    const json& name = check.require(resolved, "", "name");
+    if (!name.is_string() || name.get<std::string>().empty())
+        check.fail("name", "must be a non-empty string");
+    scene.name = name.get<std::string>();
+    for (char c : scene.name)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'))
+            check.fail("name", "may hold only letters, digits, '-' and '_' (got \"" + scene.name + "\")");
+    if (resolved.contains("description") && !resolved["description"].is_string())
+        check.fail("description", "must be a string");
+
+    if (seed) {
+        scene.seed = *seed;
+    } else {
+        const json& s = check.require(resolved, "", "seed");
+        if (!s.is_number_unsigned())
+            check.fail("seed", "must be a non-negative integer (got " + s.dump() + ")");
+        scene.seed = s.get<uint64_t>();
+    }
+    resolved["seed"] = scene.seed;
+
+    const json& field = check.require(resolved, "", "testField");
+    check.onlyKeys(field, "testField", {"countX", "countZ", "spacing", "jitter", "scaleMin", "scaleMax"});
+    TestFieldParams& tf = scene.testField;
+    tf.countX = check.count(check.require(field, "testField", "countX"), "testField.countX", 1, 4096);
+    tf.countZ = check.count(check.require(field, "testField", "countZ"), "testField.countZ", 1, 4096);
+    tf.spacing = check.number(check.require(field, "testField", "spacing"), "testField.spacing", 0.01f, 100.0f);
+    tf.jitter = check.number(field.value("jitter", json(0.0)), "testField.jitter", 0.0f, 0.5f);
+    tf.scaleMin = check.number(field.value("scaleMin", json(1.0)), "testField.scaleMin", 0.01f, 100.0f);
+    tf.scaleMax = check.number(field.value("scaleMax", json(1.0)), "testField.scaleMax", 0.01f, 100.0f);
+    if (tf.scaleMax < tf.scaleMin)
+        check.fail("testField.scaleMax", "must not be less than testField.scaleMin");
+
+    if (resolved.contains("camera")) {
+        const json& cam = resolved["camera"];
+        check.onlyKeys(cam, "camera", {"eye", "target", "fovYDegrees"});
+        scene.camera.eye = check.vec3(check.require(cam, "camera", "eye"), "camera.eye");
+        scene.camera.target = check.vec3(check.require(cam, "camera", "target"), "camera.target");
+        scene.camera.fovYDegrees = check.number(cam.value("fovYDegrees", json(55.0)), "camera.fovYDegrees", 5.0f, 150.0f);
+        if (glm::length(scene.camera.target - scene.camera.eye) < 1e-3f)
+            check.fail("camera.target", "must differ from camera.eye");
+    }
+    if (resolved.contains("timeOfDay"))
+        scene.timeOfDay = check.number(resolved["timeOfDay"], "timeOfDay", 0.0f, 24.0f);
+
+    scene.resolved = std::move(resolved);
+    return scene;
+}
+
+} // namespace meadow

@@ -1,0 +1,47 @@
+// Scene files (JSON): what a field contains and how it is shown. A scene has a base description
+// and per-preset overrides ("presets": {"ci": {...}, "full": {...}}) merged over the base with
+// JSON merge patch (RFC 7386). Loading checks every key and value and throws meadow::Error
+// naming the file and the key.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+namespace meadow {
+
+struct TestFieldParams {
+    uint32_t countX = 0;   // instances along x
+    uint32_t countZ = 0;   // instances along z
+    float spacing = 1.0f;  // metres between grid points
+    float jitter = 0.0f;   // random offset, as a fraction of the spacing
+    float scaleMin = 1.0f; // uniform scale range
+    float scaleMax = 1.0f;
+};
+
+struct SceneCamera {
+    glm::vec3 eye{0.0f, 2.0f, -10.0f};
+    glm::vec3 target{0.0f};
+    float fovYDegrees = 55.0f;
+};
+
+struct Scene {
+    std::filesystem::path path;
+    std::string name;
+    std::string preset; // "ci" or "full"
+    uint64_t seed = 0;
+    TestFieldParams testField;
+    SceneCamera camera;
+    float timeOfDay = 12.0f; // local solar hours
+    nlohmann::json resolved; // the scene after the preset merge, with the effective seed
+};
+
+inline constexpr const char* kPresetNames[] = {"ci", "full"};
+
+// `seed` overrides the scene's own seed when given.
+Scene loadScene(const std::filesystem::path& path, const std::string& preset, std::optional<uint64_t> seed);
+
+} // namespace meadow

@@ -1,0 +1,53 @@
+#include "test_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/constants.hpp>
+
+namespace meadow {
+
+Mesh makeTuftMesh(uint32_t blades, uint32_t segments) {
+    Mesh mesh;
+    for (uint32_t b = 0; b < blades; ++b) {
+        // Blades fan out around the base with a golden-angle spread, each leaning outwards.
+        float angle = static_cast<float>(b) * 2.39996f;
+        float height = 0.55f + 0.35f * std::fmod(static_cast<float>(b) * 0.618f, 1.0f);
+        float lean = 0.25f + 0.2f * std::fmod(static_cast<float>(b) * 0.371f, 1.0f);
+        float width = 0.045f;
+        glm::vec3 out(std::cos(angle), 0.0f, std::sin(angle));
+        glm::vec3 side(-out.z, 0.0f, out.x);
+        uint32_t base = static_cast<uint32_t>(mesh.vertices.size());
+        for (uint32_t s = 0; s <= segments; ++s) {
+            float t = static_cast<float>(s) / static_cast<float>(segments);
+            // A blade bends outwards more towards its tip (quadratic), and tapers to a point.
+            glm::vec3 spine = out * (lean * t * t * height) + glm::vec3(0.0f, height * t, 0.0f) + out * 0.03f;
+            glm::vec3 tangent = glm::normalize(out * (2.0f * lean * t * height) + glm::vec3(0.0f, height, 0.0f));
+            glm::vec3 normal = glm::normalize(glm::cross(side, tangent));
+            float halfWidth = width * (1.0f - t * 0.92f);
+            for (int e = -1; e <= 1; e += 2) {
+                glm::vec3 p = spine + side * (halfWidth * static_cast<float>(e));
+                mesh.vertices.push_back({glm::vec4(p, e < 0 ? 0.0f : 1.0f), glm::vec4(normal, t)});
+                mesh.boundingRadius = std::max(mesh.boundingRadius, glm::length(p - glm::vec3(0.0f, 0.0f, 0.0f)));
+            }
+            if (s > 0) {
+                uint32_t a = base + (s - 1) * 2;
+                mesh.indices.insert(mesh.indices.end(), {a, a + 1, a + 2, a + 1, a + 3, a + 2});
+            }
+        }
+    }
+    // The cull pass centres the sphere at half the radius above the base; grow the radius until
+    // that sphere contains every vertex.
+    float r = mesh.boundingRadius;
+    for (;;) {
+        glm::vec3 c(0.0f, r * 0.5f, 0.0f);
+        bool inside = std::all_of(mesh.vertices.begin(), mesh.vertices.end(),
+                                  [&](const gpu::GpuVertex& v) { return glm::length(glm::vec3(v.positionU) - c) <= r; });
+        if (inside)
+            break;
+        r *= 1.05f;
+    }
+    mesh.boundingRadius = r;
+    return mesh;
+}
+
+} // namespace meadow

@@ -1,0 +1,45 @@
+#version 460
+// Cull pass: one thread per instance. Frustum test of the instance's bounding sphere, then
+// compaction of the visible instances into the instance list that the indirect draw reads,
+// with the draw's instanceCount as the atomic counter (Haar & Aaltonen 2015).
+// The CPU reference is engine/render/cull_reference.cpp; both must agree exactly.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+layout(local_size_x = kCullGroupSize) in;
+
+MEADOW_FRAME_BLOCK(0, 0)
+layout(set = 0, binding = 1, std430) readonly buffer Instances { GpuInstance instances[]; };
+layout(set = 0, binding = 2, std430) buffer DrawCommand { GpuDrawIndexedCommand draw; };
+layout(set = 0, binding = 3, std430) writeonly buffer VisibleList { uint visible[]; };
+layout(set = 0, binding = 4, std430) buffer Stats { GpuCullStats stats; };
+
+// Sphere against the six inward-facing planes; `precise` keeps the arithmetic identical to the
+// CPU reference (no fused multiply-add).
+bool sphereVisible(vec3 center, float radius) {
+    for (int i = 0; i < 6; ++i) {
+        precise float d = dot(frame.frustumPlanes[i].xyz, center) + frame.frustumPlanes[i].w;
+        if (d < -radius)
+            return false;
+    }
+    return true;
+}
+
+void main() {
+    uint index = gl_GlobalInvocationID.x;
+    if (index >= frame.counts.x)
+        return;
+
+    GpuInstance inst = instances[index];
+    float scale = inst.positionScale.w;
+    // The sphere is centred half a radius above the base: the mesh grows up from its base.
+    precise vec3 center = inst.positionScale.xyz + vec3(0.0, inst.boundsTint.x * scale * 0.5, 0.0);
+    precise float radius = inst.boundsTint.x * scale;
+
+    atomicAdd(stats.testedInstances, 1u);
+    if (sphereVisible(center, radius)) {
+        uint slot = atomicAdd(draw.instanceCount, 1u);
+        visible[slot] = index;
+        atomicAdd(stats.visibleInstances, 1u);
+    }
+}
