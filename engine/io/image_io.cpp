@@ -35,6 +35,8 @@ void writeImage(const std::filesystem::path& path, uint32_t width, uint32_t heig
     if (type == OIIO::TypeDesc::HALF)
         spec.attribute("compression", "zip");
     spec.attribute("Software", "meadow");
+    // meadow's pixels are straight (unassociated) colour with alpha; frames are opaque.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
     bool ok = out->open(tmp.string(), spec) && out->write_image(type, pixels) && out->close();
     if (!ok) {
         std::string message = out->geterror();

@@ -1,0 +1,154 @@
+#include "core/error.h"
+#include "core/library_file.h"
+#include "library.h"
+
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+
+using namespace meadow;
+
+namespace {
+
+std::filesystem::path tempPath(const std::string& name) {
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / "meadow-unit-library";
+    std::filesystem::create_directories(dir);
+    return dir / name;
+}
+
+std::vector<uint8_t> readAll(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeAll(const std::filesystem::path& p, const std::vector<uint8_t>& bytes) {
+    std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+std::string readError(const std::filesystem::path& p) {
+    try {
+        readLibraryFile(p);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(LibraryFile, GoldenBytesPinTheFormat) {
+    // One tiny section: header, one table entry, 8-byte aligned payload. If this changes, the
+    // format changed: bump kLibraryFormatVersion.
+    LibraryFile lib;
+    lib.inputHash = 0x0102030405060708ull;
+    lib.sections["ABCD"] = {0xAA, 0xBB};
+    auto p = tempPath("golden.mlib");
+    writeLibraryFile(p, lib);
+    std::vector<uint8_t> bytes = readAll(p);
+    ASSERT_EQ(bytes.size(), 32u + 32u + 2u);
+    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 1, 0, 0, 0, 1, 0, 0, 0};
+    EXPECT_EQ(std::vector<uint8_t>(bytes.begin(), bytes.begin() + 16), std::vector<uint8_t>(header, header + 16));
+    EXPECT_EQ(bytes[16], 0x08); // inputHash, little-endian
+    EXPECT_EQ(bytes[23], 0x01);
+    EXPECT_EQ(std::string(bytes.begin() + 32, bytes.begin() + 36), "ABCD");
+    EXPECT_EQ(bytes[40], 64); // payload offset
+    EXPECT_EQ(bytes[48], 2);  // payload size
+    EXPECT_EQ(bytes[64], 0xAA);
+    EXPECT_EQ(bytes[65], 0xBB);
+    EXPECT_EQ(fnv1a64("a", 1), 0xaf63dc4c8601ec8cull); // FNV-1a 64 reference value
+}
+
+TEST(LibraryFile, RoundTrips) {
+    LibraryFile lib;
+    lib.inputHash = 42;
+    lib.sections["ONE_"] = {1, 2, 3};
+    lib.sections["TWO_"] = std::vector<uint8_t>(1000, 7);
+    auto p = tempPath("roundtrip.mlib");
+    writeLibraryFile(p, lib);
+    LibraryFile back = readLibraryFile(p);
+    EXPECT_EQ(back.inputHash, 42u);
+    EXPECT_EQ(back.sections, lib.sections);
+    uint64_t hash = 0;
+    EXPECT_TRUE(peekLibraryInputHash(p, hash));
+    EXPECT_EQ(hash, 42u);
+}
+
+TEST(LibraryFile, RejectsCorruptionNamingTheFile) {
+    LibraryFile lib;
+    lib.sections["DATA"] = std::vector<uint8_t>(100, 9);
+    auto good = tempPath("good.mlib");
+    writeLibraryFile(good, lib);
+    std::vector<uint8_t> bytes = readAll(good);
+
+    auto flipped = tempPath("flipped.mlib");
+    std::vector<uint8_t> f = bytes;
+    f[f.size() - 10] ^= 1; // one bit in the payload
+    writeAll(flipped, f);
+    std::string e = readError(flipped);
+    EXPECT_NE(e.find("flipped.mlib"), std::string::npos) << e;
+    EXPECT_NE(e.find("checksum mismatch"), std::string::npos) << e;
+
+    auto truncated = tempPath("truncated.mlib");
+    writeAll(truncated, std::vector<uint8_t>(bytes.begin(), bytes.end() - 20));
+    EXPECT_NE(readError(truncated).find("outside the file"), std::string::npos);
+
+    auto magic = tempPath("magic.mlib");
+    f = bytes;
+    f[0] = 'X';
+    writeAll(magic, f);
+    EXPECT_NE(readError(magic).find("bad magic"), std::string::npos);
+
+    auto version = tempPath("version.mlib");
+    f = bytes;
+    f[8] = 99;
+    writeAll(version, f);
+    EXPECT_NE(readError(version).find("format version 99"), std::string::npos);
+
+    auto table = tempPath("table.mlib");
+    f = bytes;
+    f[40] ^= 0x10; // section offset
+    writeAll(table, f);
+    EXPECT_NE(readError(table).find("section table checksum"), std::string::npos);
+
+    auto empty = tempPath("empty.mlib");
+    writeAll(empty, {});
+    EXPECT_NE(readError(empty).find("too short"), std::string::npos);
+    EXPECT_NE(readError(tempPath("absent.mlib")).find("cannot open"), std::string::npos);
+}
+
+TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
+    Scene scene = loadScene(MEADOW_SOURCE_DIR "/data/scenes/irises.json", "ci", std::nullopt);
+    auto a = tempPath("det-a.mlib"), b = tempPath("det-b.mlib"), c = tempPath("det-c.mlib");
+    buildLibrary(scene, a, true);
+    buildLibrary(scene, b, true);
+    EXPECT_EQ(readAll(a), readAll(b));
+    Scene other = loadScene(MEADOW_SOURCE_DIR "/data/scenes/irises.json", "ci", scene.seed + 1);
+    buildLibrary(other, c, true);
+    EXPECT_NE(readAll(a), readAll(c));
+    EXPECT_NE(libraryInputHash(scene), libraryInputHash(other));
+
+    Library lib = loadLibrary(a);
+    EXPECT_EQ(lib.testField.size(), size_t(scene.testField.countX) * scene.testField.countZ);
+    EXPECT_GT(lib.testMesh.indices.size(), 0u);
+    // Every vertex lies inside the bounding sphere the cull pass uses.
+    for (const auto& v : lib.testMesh.vertices)
+        EXPECT_LE(glm::length(glm::vec3(v.positionU) - glm::vec3(0, lib.testMesh.boundingRadius * 0.5f, 0)),
+                  lib.testMesh.boundingRadius * (1.0f + 1e-6f));
+}
+
+TEST(Library, CorruptCacheIsRebuiltNotTrusted) {
+    auto dir = tempPath("cache");
+    std::filesystem::remove_all(dir);
+    setenv("MEADOW_CACHE_DIR", dir.c_str(), 1);
+    Scene scene = loadScene(MEADOW_SOURCE_DIR "/data/scenes/irises.json", "ci", std::nullopt);
+    Library first = ensureLibrary(scene, true);
+    auto path = cachedLibraryPath(scene);
+    std::vector<uint8_t> bytes = readAll(path);
+    bytes[bytes.size() - 5] ^= 0xff;
+    writeAll(path, bytes);
+    EXPECT_THROW(loadLibrary(path), Error);
+    Library second = ensureLibrary(scene, true);
+    EXPECT_EQ(second.testField.size(), first.testField.size());
+    EXPECT_NO_THROW(loadLibrary(path)); // the cache was rewritten whole
+    unsetenv("MEADOW_CACHE_DIR");
+}

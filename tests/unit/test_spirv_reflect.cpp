@@ -1,0 +1,52 @@
+// The embedded shaders reflect to the layouts the host binds; no device needed.
+#include "core/error.h"
+#include "gpu_types.h"
+#include "vk/shader_registry.h"
+#include "vk/spirv_reflect.h"
+
+#include <gtest/gtest.h>
+
+using namespace meadow;
+
+TEST(SpirvReflect, CullPassLayout) {
+    ShaderReflection r = reflectShader(findShader("cull.comp"), "cull.comp");
+    EXPECT_EQ(r.stage, VK_SHADER_STAGE_COMPUTE_BIT);
+    EXPECT_EQ(r.localSize[0], gpu::kCullGroupSize);
+    EXPECT_EQ(r.localSize[1], 1u);
+    ASSERT_EQ(r.bindings.size(), 5u);
+    EXPECT_EQ(r.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+    for (uint32_t b = 1; b <= 4; ++b)
+        EXPECT_EQ(r.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
+    EXPECT_FALSE(r.usesPushConstants);
+}
+
+TEST(SpirvReflect, TonemapUsesStorageImages) {
+    ShaderReflection r = reflectShader(findShader("tonemap.comp"), "tonemap.comp");
+    EXPECT_EQ(r.localSize[0], gpu::kTonemapGroupSize);
+    EXPECT_EQ(r.localSize[1], gpu::kTonemapGroupSize);
+    EXPECT_EQ(r.bindings.at(1), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+    EXPECT_EQ(r.bindings.at(2), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+}
+
+TEST(SpirvReflect, GraphicsStagesAndPushConstants) {
+    EXPECT_EQ(reflectShader(findShader("instance.vert"), "v").stage, VK_SHADER_STAGE_VERTEX_BIT);
+    EXPECT_EQ(reflectShader(findShader("instance.frag"), "f").stage, VK_SHADER_STAGE_FRAGMENT_BIT);
+    EXPECT_TRUE(reflectShader(findShader("ground.vert"), "g").usesPushConstants);
+    EXPECT_TRUE(reflectShader(findShader("sky.vert"), "s").bindings.empty());
+}
+
+TEST(SpirvReflect, EveryEmbeddedShaderParses) {
+    EXPECT_GE(shaderNames().size(), 8u);
+    for (std::string_view name : shaderNames())
+        EXPECT_NO_THROW(reflectShader(findShader(name), std::string(name))) << name;
+    EXPECT_TRUE(findShader("no-such.comp").empty());
+}
+
+TEST(SpirvReflect, RejectsGarbage) {
+    std::vector<uint32_t> junk = {1, 2, 3, 4, 5, 6};
+    EXPECT_THROW(reflectShader(junk, "junk"), Error);
+    std::span<const uint32_t> cull = findShader("cull.comp");
+    std::vector<uint32_t> truncated(cull.begin(), cull.begin() + 7);
+    truncated[5] = (100u << 16) | 17u; // an instruction claiming 100 words
+    EXPECT_THROW(reflectShader(truncated, "truncated"), Error);
+}
