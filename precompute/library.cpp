@@ -44,7 +44,8 @@ std::vector<gpu::GpuInstance> placeTestField(const Scene& scene, float meshRadiu
             float scale = rng.uniform(p.scaleMin, p.scaleMax);
             float yaw = rng.uniform(0.0f, 6.2831853f);
             float hue = rng.uniform();
-            inst.positionScale = glm::vec4(originX + p.spacing * float(x) + jx, 0.0f, originZ + p.spacing * float(z) + jz, scale);
+            inst.positionScale =
+                glm::vec4(originX + p.spacing * float(x) + jx, 0.0f, originZ + p.spacing * float(z) + jz, scale);
             inst.boundsTint = glm::vec4(meshRadius, yaw, hue, 0.0f);
             out.push_back(inst);
         }
@@ -82,7 +83,8 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     }
 
     if (!quiet)
-        std::fprintf(stderr, "meadow: [2/2] test field: %u x %u instances\n", scene.testField.countX, scene.testField.countZ);
+        std::fprintf(stderr, "meadow: [2/2] test field: %u x %u instances\n", scene.testField.countX,
+                     scene.testField.countZ);
     std::vector<gpu::GpuInstance> field = placeTestField(scene, mesh.boundingRadius);
     ByteWriter w;
     w.u32(static_cast<uint32_t>(field.size()));

@@ -15,14 +15,14 @@ inline uint64_t splitMix64(uint64_t x) {
 }
 
 class Random {
-public:
+  public:
     explicit Random(uint64_t seed) : state_(seed) {}
     uint64_t next() { return splitMix64(state_++); }
     // Uniform in [0, 1), 24 bits: exactly representable as a float.
     float uniform() { return static_cast<float>(next() >> 40) * (1.0f / 16777216.0f); }
     float uniform(float lo, float hi) { return lo + (hi - lo) * uniform(); }
 
-private:
+  private:
     uint64_t state_;
 };
 

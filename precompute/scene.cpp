@@ -11,7 +11,7 @@ namespace {
 using nlohmann::json;
 
 class Checker {
-public:
+  public:
     explicit Checker(std::string file) : file_(std::move(file)) {}
 
     [[noreturn]] void fail(const std::string& key, const std::string& what) const {
@@ -47,7 +47,8 @@ public:
             fail(key, "must be an integer (got " + v.dump() + ")");
         int64_t i = v.get<int64_t>();
         if (i < lo || i > hi)
-            fail(key, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " + v.dump() + ")");
+            fail(key,
+                 "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " + v.dump() + ")");
         return static_cast<uint32_t>(i);
     }
 
@@ -58,7 +59,7 @@ public:
                 number(v[2], key + "[2]", -1e6f, 1e6f)};
     }
 
-private:
+  private:
     static std::string fmt(float f) {
         json j = f;
         return j.dump();
@@ -142,7 +143,8 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
         check.onlyKeys(cam, "camera", {"eye", "target", "fovYDegrees"});
         scene.camera.eye = check.vec3(check.require(cam, "camera", "eye"), "camera.eye");
         scene.camera.target = check.vec3(check.require(cam, "camera", "target"), "camera.target");
-        scene.camera.fovYDegrees = check.number(cam.value("fovYDegrees", json(55.0)), "camera.fovYDegrees", 5.0f, 150.0f);
+        scene.camera.fovYDegrees =
+            check.number(cam.value("fovYDegrees", json(55.0)), "camera.fovYDegrees", 5.0f, 150.0f);
         if (glm::length(scene.camera.target - scene.camera.eye) < 1e-3f)
             check.fail("camera.target", "must differ from camera.eye");
     }

@@ -40,8 +40,9 @@ Mesh makeTuftMesh(uint32_t blades, uint32_t segments) {
     float r = mesh.boundingRadius;
     for (;;) {
         glm::vec3 c(0.0f, r * 0.5f, 0.0f);
-        bool inside = std::all_of(mesh.vertices.begin(), mesh.vertices.end(),
-                                  [&](const gpu::GpuVertex& v) { return glm::length(glm::vec3(v.positionU) - c) <= r; });
+        bool inside = std::all_of(mesh.vertices.begin(), mesh.vertices.end(), [&](const gpu::GpuVertex& v) {
+            return glm::length(glm::vec3(v.positionU) - c) <= r;
+        });
         if (inside)
             break;
         r *= 1.05f;

@@ -75,14 +75,15 @@ float ParsedArgs::f32(const std::string& option, float fallback, float lo, float
     return f;
 }
 
-std::pair<uint32_t, uint32_t> ParsedArgs::size(const std::string& option, std::pair<uint32_t, uint32_t> fallback) const {
+std::pair<uint32_t, uint32_t> ParsedArgs::size(const std::string& option,
+                                               std::pair<uint32_t, uint32_t> fallback) const {
     auto v = value(option);
     if (!v)
         return fallback;
     size_t x = v->find('x');
     uint64_t w, h;
-    if (x == std::string::npos || !parseU64(v->substr(0, x), w) || !parseU64(v->substr(x + 1), h) || w < 1 ||
-        h < 1 || w > 16384 || h > 16384)
+    if (x == std::string::npos || !parseU64(v->substr(0, x), w) || !parseU64(v->substr(x + 1), h) || w < 1 || h < 1 ||
+        w > 16384 || h > 16384)
         bad(command, option, *v, "a size WxH with each side from 1 to 16384 (e.g. 1280x720)");
     return {static_cast<uint32_t>(w), static_cast<uint32_t>(h)};
 }

@@ -13,9 +13,9 @@ namespace meadow {
 
 struct CommandSpec {
     std::string name;
-    std::vector<std::string> positionals;   // names of the required positional arguments
-    std::set<std::string> valueOptions;     // "--out" etc., each followed by a value
-    std::set<std::string> switchOptions;    // "--json" etc., no value
+    std::vector<std::string> positionals; // names of the required positional arguments
+    std::set<std::string> valueOptions;   // "--out" etc., each followed by a value
+    std::set<std::string> switchOptions;  // "--json" etc., no value
 };
 
 struct ParsedArgs {

@@ -77,7 +77,8 @@ double percentile(std::vector<double> values, double p) {
     if (values.empty())
         return 0.0;
     std::sort(values.begin(), values.end());
-    size_t index = static_cast<size_t>(std::min<double>(values.size() - 1, std::floor(p * double(values.size() - 1) + 0.5)));
+    size_t index =
+        static_cast<size_t>(std::min<double>(values.size() - 1, std::floor(p * double(values.size() - 1) + 0.5)));
     return values[index];
 }
 

@@ -78,7 +78,9 @@ struct FlyCamera {
 int runView(const Args& argv) {
     if (printHelpIfAsked(argv, kViewHelp))
         return 0;
-    CommandSpec spec{"view", {"SCENE"}, {"--size", "--time-of-day", "--camera", "--frames", "--resize", "--screenshot"},
+    CommandSpec spec{"view",
+                     {"SCENE"},
+                     {"--size", "--time-of-day", "--camera", "--frames", "--resize", "--screenshot"},
                      {"--no-vsync"}};
     addSceneOptions(spec);
     addEngineOptions(spec);
@@ -140,7 +142,8 @@ int runView(const Args& argv) {
                 glfwWaitEventsTimeout(0.1);
                 continue;
             }
-            if (window.swapchain == VK_NULL_HANDLE || fb.width != window.extent.width || fb.height != window.extent.height) {
+            if (window.swapchain == VK_NULL_HANDLE || fb.width != window.extent.width ||
+                fb.height != window.extent.height) {
                 if (!recreateSwapchain(ctx, window))
                     continue;
             }
@@ -179,8 +182,9 @@ int runView(const Args& argv) {
             Camera camera = cameraFromArgs(args, scene);
             camera.eye = fly.eye;
             camera.target = fly.eye + fly.forward();
-            updateFrameUniforms(renderer, makeFrameUniforms(camera, float(targets.extent.width) / float(targets.extent.height),
-                                                            sky, renderer.instanceCount, renderer.indexCount, frame));
+            updateFrameUniforms(renderer,
+                                makeFrameUniforms(camera, float(targets.extent.width) / float(targets.extent.height),
+                                                  sky, renderer.instanceCount, renderer.indexCount, frame));
 
             VK_CHECK(vkResetCommandBuffer(window.cmd, 0));
             VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -198,8 +202,8 @@ int runView(const Args& argv) {
             if (frame == 0)
                 throw Error("meadow view: no frame was shown, so there is no screenshot to write");
             writeRgba8(*screenshot, targets.extent.width, targets.extent.height, readLdrPixels(ctx, targets));
-            std::fprintf(stderr, "meadow: screenshot %ux%u written to %s\n", targets.extent.width, targets.extent.height,
-                         screenshot->string().c_str());
+            std::fprintf(stderr, "meadow: screenshot %ux%u written to %s\n", targets.extent.width,
+                         targets.extent.height, screenshot->string().c_str());
         }
         std::fprintf(stderr, "meadow: view showed %u frames; window %ux%u at exit\n", frame, window.extent.width,
                      window.extent.height);

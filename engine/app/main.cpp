@@ -50,11 +50,16 @@ int main(int argc, char** argv) {
         return 0;
     }
     try {
-        if (command == "precompute") return runPrecompute(args);
-        if (command == "inspect") return runInspect(args);
-        if (command == "render") return runRender(args);
-        if (command == "bench") return runBench(args);
-        if (command == "view") return runView(args);
+        if (command == "precompute")
+            return runPrecompute(args);
+        if (command == "inspect")
+            return runInspect(args);
+        if (command == "render")
+            return runRender(args);
+        if (command == "bench")
+            return runBench(args);
+        if (command == "view")
+            return runView(args);
         std::fprintf(stderr, "meadow: unknown command '%s' (commands: precompute, inspect, render, view, bench)\n",
                      command.c_str());
         return 2;

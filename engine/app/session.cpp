@@ -50,8 +50,10 @@ int validationExitStatus(const Context& ctx) {
     if (!ctx.validationEnabled)
         return 0;
     const ValidationCounter& v = *ctx.validation;
-    std::fprintf(stderr, "meadow: validation layer on (synchronization validation included): %u messages (%u errors, %u warnings)\n",
-                 v.total(), v.errors.load(), v.warnings.load());
+    std::fprintf(
+        stderr,
+        "meadow: validation layer on (synchronization validation included): %u messages (%u errors, %u warnings)\n",
+        v.total(), v.errors.load(), v.warnings.load());
     return v.total() == 0 ? 0 : kExitValidationFailed;
 }
 

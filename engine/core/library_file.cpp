@@ -17,7 +17,9 @@ constexpr uint32_t kMaxSections = 4096;
 uint32_t loadU32(const uint8_t* p) {
     return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
-uint64_t loadU64(const uint8_t* p) { return uint64_t(loadU32(p)) | uint64_t(loadU32(p + 4)) << 32; }
+uint64_t loadU64(const uint8_t* p) {
+    return uint64_t(loadU32(p)) | uint64_t(loadU32(p + 4)) << 32;
+}
 
 uint32_t tagValue(const std::string& tag) {
     if (tag.size() != 4)
@@ -163,8 +165,9 @@ LibraryFile readLibraryFile(const std::filesystem::path& path) {
             throw Error(where + ": section '" + tag + "' lies outside the file (truncated?)");
         if (fnv1a64(&file[offset], size) != checksum)
             throw Error(where + ": section '" + tag + "' checksum mismatch (corrupt file)");
-        if (!lib.sections.emplace(tag, std::vector<uint8_t>(file.begin() + std::ptrdiff_t(offset),
-                                                            file.begin() + std::ptrdiff_t(offset + size)))
+        if (!lib.sections
+                 .emplace(tag, std::vector<uint8_t>(file.begin() + std::ptrdiff_t(offset),
+                                                    file.begin() + std::ptrdiff_t(offset + size)))
                  .second)
             throw Error(where + ": section '" + tag + "' appears twice");
     }

@@ -38,19 +38,19 @@ bool peekLibraryInputHash(const std::filesystem::path& path, uint64_t& inputHash
 
 // Little-endian encoding of plain values into section bytes, and decoding with bounds checks.
 class ByteWriter {
-public:
+  public:
     void u32(uint32_t v);
     void u64(uint64_t v);
     void f32(float v);
     void bytes(const void* data, size_t size);
     std::vector<uint8_t> take() { return std::move(data_); }
 
-private:
+  private:
     std::vector<uint8_t> data_;
 };
 
 class ByteReader {
-public:
+  public:
     ByteReader(const std::vector<uint8_t>& data, std::string context) : data_(data), context_(std::move(context)) {}
     uint32_t u32();
     uint64_t u64();
@@ -60,7 +60,7 @@ public:
     // Throws unless every byte was consumed.
     void expectEnd() const;
 
-private:
+  private:
     const std::vector<uint8_t>& data_;
     std::string context_;
     size_t at_ = 0;

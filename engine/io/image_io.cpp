@@ -20,7 +20,8 @@ std::string lowerExtension(const std::filesystem::path& path) {
 std::filesystem::path temporaryPath(const std::filesystem::path& path) {
     // Keep the extension so OpenImageIO picks the right format for the temporary file.
     std::filesystem::path tmp = path;
-    tmp.replace_filename("." + path.stem().string() + ".partial-" + std::to_string(getpid()) + path.extension().string());
+    tmp.replace_filename("." + path.stem().string() + ".partial-" + std::to_string(getpid()) +
+                         path.extension().string());
     return tmp;
 }
 
@@ -84,7 +85,8 @@ void writeRgba8(const std::filesystem::path& path, uint32_t width, uint32_t heig
     writeImage(path, width, height, OIIO::TypeDesc::UINT8, pixels.data());
 }
 
-void writeRgbaHalf(const std::filesystem::path& path, uint32_t width, uint32_t height, std::span<const uint16_t> pixels) {
+void writeRgbaHalf(const std::filesystem::path& path, uint32_t width, uint32_t height,
+                   std::span<const uint16_t> pixels) {
     if (pixels.size() != size_t(width) * height * 4)
         throw Error("internal: wrong pixel count for " + path.string());
     writeImage(path, width, height, OIIO::TypeDesc::HALF, pixels.data());

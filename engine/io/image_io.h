@@ -20,7 +20,8 @@ ImageFileKind imageKindForPath(const std::filesystem::path& path);
 void checkOutputWritable(const std::filesystem::path& path);
 
 void writeRgba8(const std::filesystem::path& path, uint32_t width, uint32_t height, std::span<const uint8_t> pixels);
-void writeRgbaHalf(const std::filesystem::path& path, uint32_t width, uint32_t height, std::span<const uint16_t> pixels);
+void writeRgbaHalf(const std::filesystem::path& path, uint32_t width, uint32_t height,
+                   std::span<const uint16_t> pixels);
 
 // Output path of frame `index` of `count`: the path itself for a single frame, otherwise the
 // index inserted before the extension ("out.png" -> "out.0003.png").

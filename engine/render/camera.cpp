@@ -47,8 +47,8 @@ SkyState skyForTimeOfDay(float hours) {
     s.sunIntensity = 3.0f * day;
     s.sunColor = glm::mix(glm::vec3(1.0f, 0.96f, 0.9f), glm::vec3(1.0f, 0.55f, 0.3f), low);
     s.zenith = glm::mix(glm::vec3(0.01f, 0.012f, 0.03f), glm::vec3(0.25f, 0.45f, 0.9f), day);
-    s.horizon = glm::mix(glm::vec3(0.02f, 0.02f, 0.04f), glm::mix(glm::vec3(0.65f, 0.75f, 0.9f),
-                                                                   glm::vec3(0.9f, 0.6f, 0.4f), low * 0.7f), day);
+    s.horizon = glm::mix(glm::vec3(0.02f, 0.02f, 0.04f),
+                         glm::mix(glm::vec3(0.65f, 0.75f, 0.9f), glm::vec3(0.9f, 0.6f, 0.4f), low * 0.7f), day);
     s.exposure = glm::mix(4.0f, 0.8f, day);
     return s;
 }

@@ -26,7 +26,8 @@ FieldRenderer createFieldRenderer(Context& ctx, const Mesh& mesh, std::span<cons
     GraphicsPipelineDesc groundDesc{"ground.vert", "ground.frag", kHdrFormat, kDepthFormat};
     groundDesc.pushConstantSize = sizeof(glm::vec4);
     r.ground = createGraphicsPipeline(ctx, groundDesc);
-    r.instance = createGraphicsPipeline(ctx, GraphicsPipelineDesc{"instance.vert", "instance.frag", kHdrFormat, kDepthFormat});
+    r.instance =
+        createGraphicsPipeline(ctx, GraphicsPipelineDesc{"instance.vert", "instance.frag", kHdrFormat, kDepthFormat});
 
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     r.frameUniforms = createBuffer(ctx, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload);
@@ -39,8 +40,10 @@ FieldRenderer createFieldRenderer(Context& ctx, const Mesh& mesh, std::span<cons
                                  MemoryUse::Device);
     r.visibleList = createBuffer(ctx, instances.size() * sizeof(uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                  MemoryUse::Device);
-    r.stats = createBuffer(ctx, sizeof(gpu::GpuCullStats), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device);
-    r.statsReadback = createBuffer(ctx, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+    r.stats =
+        createBuffer(ctx, sizeof(gpu::GpuCullStats), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device);
+    r.statsReadback =
+        createBuffer(ctx, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
     std::memset(r.statsReadback.mapped(), 0, sizeof(gpu::GpuCullStats));
 
     uploadToBuffer(ctx, r.instances, instances.data(), instances.size_bytes());
@@ -82,7 +85,8 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     // indirect command, in the vertex shader and as a copy source.
     barrier(cmd, access::kIndirectRead | access::kVertexShaderRead | access::kComputeReadWrite | access::kTransferRead,
             access::kTransferWrite);
-    vkCmdFillBuffer(cmd, r.drawCommand.buffer, offsetof(gpu::GpuDrawIndexedCommand, instanceCount), sizeof(uint32_t), 0);
+    vkCmdFillBuffer(cmd, r.drawCommand.buffer, offsetof(gpu::GpuDrawIndexedCommand, instanceCount), sizeof(uint32_t),
+                    0);
     vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
 
@@ -127,7 +131,8 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     vkCmdDraw(cmd, 3, 1, 0, 0);
 
     bindPipeline(ctx, cmd, r.ground, {r.frameUniforms});
-    vkCmdPushConstants(cmd, r.ground.layout, r.ground.pushConstantStages, 0, sizeof(glm::vec4), &r.groundCenterHalfSize);
+    vkCmdPushConstants(cmd, r.ground.layout, r.ground.pushConstantStages, 0, sizeof(glm::vec4),
+                       &r.groundCenterHalfSize);
     vkCmdDraw(cmd, 6, 1, 0, 0);
 
     bindPipeline(ctx, cmd, r.instance, {r.frameUniforms, r.instances, r.visibleList, r.vertices});
@@ -141,8 +146,9 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
     imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite | access::kTransferRead,
                  VK_IMAGE_LAYOUT_UNDEFINED, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL);
-    bindPipeline(ctx, cmd, r.tonemap,
-                 {r.frameUniforms, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL), Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
+    bindPipeline(
+        ctx, cmd, r.tonemap,
+        {r.frameUniforms, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL), Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
     dispatchCovering(cmd, r.tonemap, t.extent.width, t.extent.height);
     if (timer)
         markTimestamp(*timer, cmd, "tonemap");

@@ -46,12 +46,14 @@ RenderTargets createRenderTargets(Context& ctx, VkExtent2D extent) {
                   "HDR colour (R16G16B16A16_SFLOAT)");
     requireFormat(ctx, kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT, "depth (D32_SFLOAT)");
     requireFormat(ctx, kLdrFormat,
-                  VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT | VK_FORMAT_FEATURE_BLIT_SRC_BIT,
+                  VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT |
+                      VK_FORMAT_FEATURE_BLIT_SRC_BIT,
                   "display (R8G8B8A8_UNORM)");
     RenderTargets t;
     t.extent = extent;
     t.hdr = createImage2D(ctx, extent, kHdrFormat,
-                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     t.depth = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
     t.ldr = createImage2D(ctx, extent, kLdrFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     return t;

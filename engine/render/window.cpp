@@ -38,13 +38,16 @@ void initWindowSystem() {
     }
 }
 
-void terminateWindowSystem() { glfwTerminate(); }
+void terminateWindowSystem() {
+    glfwTerminate();
+}
 
 std::vector<std::string> windowInstanceExtensions() {
     uint32_t count = 0;
     const char** names = glfwGetRequiredInstanceExtensions(&count);
     if (!names)
-        throw Error("cannot open a window: Vulkan has no surface extensions for this display (" + glfwErrorText() + ")");
+        throw Error("cannot open a window: Vulkan has no surface extensions for this display (" + glfwErrorText() +
+                    ")");
     return std::vector<std::string>(names, names + count);
 }
 
@@ -156,9 +159,10 @@ bool recreateSwapchain(Context& ctx, Window& w) {
     info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
-    info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
-                              ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
-                              : VkCompositeAlphaFlagBitsKHR(caps.supportedCompositeAlpha & -caps.supportedCompositeAlpha);
+    info.compositeAlpha =
+        (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)
+            ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
+            : VkCompositeAlphaFlagBitsKHR(caps.supportedCompositeAlpha & -caps.supportedCompositeAlpha);
     info.presentMode = mode;
     info.clipped = VK_TRUE;
     info.oldSwapchain = w.swapchain;

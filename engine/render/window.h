@@ -51,7 +51,8 @@ bool acquireImage(Context& context, Window& window, uint32_t& imageIndex);
 
 // Records the blit of `targets.ldr` (GENERAL, written by the tonemap pass) to swapchain image
 // `imageIndex`, scaled to fit, and its transition for presentation.
-void recordBlitToSwapchain(VkCommandBuffer cmd, const Window& window, uint32_t imageIndex, const RenderTargets& targets);
+void recordBlitToSwapchain(VkCommandBuffer cmd, const Window& window, uint32_t imageIndex,
+                           const RenderTargets& targets);
 
 // Submits the window's command buffer (waiting on the acquire) and presents. Returns false when
 // the swapchain is out of date and was recreated.

@@ -14,8 +14,8 @@ void barrier(VkCommandBuffer cmd, Access before, Access after) {
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, Access before,
-                  VkImageLayout oldLayout, Access after, VkImageLayout newLayout) {
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, Access before, VkImageLayout oldLayout,
+                  Access after, VkImageLayout newLayout) {
     VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     ib.srcStageMask = before.stage;
     ib.srcAccessMask = before.access;

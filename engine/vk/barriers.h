@@ -27,20 +27,21 @@ inline constexpr Access kVertexShaderRead{VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT,
 inline constexpr Access kColorAttachmentWrite{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                                               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
                                                   VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT};
-inline constexpr Access kDepthAttachment{VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                                             VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-                                             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+inline constexpr Access kDepthAttachment{
+    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
 inline constexpr Access kHostRead{VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT};
 } // namespace access
 
-inline Access operator|(Access a, Access b) { return {a.stage | b.stage, a.access | b.access}; }
+inline Access operator|(Access a, Access b) {
+    return {a.stage | b.stage, a.access | b.access};
+}
 
 // Orders all memory accesses `before` against `after` (global memory barrier).
 void barrier(VkCommandBuffer cmd, Access before, Access after);
 
 // Orders accesses to one image and moves it from `oldLayout` to `newLayout`.
-void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, Access before,
-                  VkImageLayout oldLayout, Access after, VkImageLayout newLayout);
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, Access before, VkImageLayout oldLayout,
+                  Access after, VkImageLayout newLayout);
 
 } // namespace meadow

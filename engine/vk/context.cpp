@@ -95,15 +95,15 @@ std::vector<VkPhysicalDevice> enumeratePhysicalDevices(VkInstance instance) {
 constexpr const char* kDeviceExtensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
 
 // Everything meadow needs from a device, as a list of human-readable gaps (empty: usable).
-std::vector<std::string> missingRequirements(VkPhysicalDevice pd, const ContextOptions& options,
-                                             VkInstance instance, uint32_t* queueFamilyOut) {
+std::vector<std::string> missingRequirements(VkPhysicalDevice pd, const ContextOptions& options, VkInstance instance,
+                                             uint32_t* queueFamilyOut) {
     bool presentation = options.presentation;
     std::vector<std::string> missing;
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(pd, &props);
     if (props.apiVersion < VK_API_VERSION_1_3)
-        missing.push_back("Vulkan 1.3 (device reports " + std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) +
-                          "." + std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + ")");
+        missing.push_back("Vulkan 1.3 (device reports " + std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." +
+                          std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + ")");
 
     uint32_t extCount = 0;
     vkEnumerateDeviceExtensionProperties(pd, nullptr, &extCount, nullptr);
@@ -125,13 +125,20 @@ std::vector<std::string> missingRequirements(VkPhysicalDevice pd, const ContextO
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11};
     if (props.apiVersion >= VK_API_VERSION_1_3) {
         vkGetPhysicalDeviceFeatures2(pd, &f2);
-        if (!f13.dynamicRendering) missing.push_back("feature dynamicRendering");
-        if (!f13.synchronization2) missing.push_back("feature synchronization2");
-        if (!f13.maintenance4) missing.push_back("feature maintenance4");
-        if (!f12.hostQueryReset) missing.push_back("feature hostQueryReset");
-        if (!f11.shaderDrawParameters) missing.push_back("feature shaderDrawParameters");
-        if (!f2.features.multiDrawIndirect) missing.push_back("feature multiDrawIndirect");
-        if (!f2.features.drawIndirectFirstInstance) missing.push_back("feature drawIndirectFirstInstance");
+        if (!f13.dynamicRendering)
+            missing.push_back("feature dynamicRendering");
+        if (!f13.synchronization2)
+            missing.push_back("feature synchronization2");
+        if (!f13.maintenance4)
+            missing.push_back("feature maintenance4");
+        if (!f12.hostQueryReset)
+            missing.push_back("feature hostQueryReset");
+        if (!f11.shaderDrawParameters)
+            missing.push_back("feature shaderDrawParameters");
+        if (!f2.features.multiDrawIndirect)
+            missing.push_back("feature multiDrawIndirect");
+        if (!f2.features.drawIndirectFirstInstance)
+            missing.push_back("feature drawIndirectFirstInstance");
     }
     if (!props.limits.timestampComputeAndGraphics)
         missing.push_back("limit timestampComputeAndGraphics");
@@ -216,8 +223,8 @@ void createContext(Context& ctx, const ContextOptions& options) {
     features.pEnabledValidationFeatures = enables;
 
     VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messengerInfo.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
                                 VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                                 VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
@@ -280,7 +287,8 @@ void createContext(Context& ctx, const ContextOptions& options) {
             std::string list;
             for (const std::string& line : listDevices(ctx))
                 list += "\n  " + line;
-            throw Error("no Vulkan device matches '" + override + "' (from --device or MEADOW_DEVICE); devices:" + list);
+            throw Error("no Vulkan device matches '" + override +
+                        "' (from --device or MEADOW_DEVICE); devices:" + list);
         }
         order = named;
     }
@@ -345,8 +353,8 @@ void createContext(Context& ctx, const ContextOptions& options) {
     VK_CHECK(vkCreateDevice(ctx.physicalDevice, &deviceInfo, nullptr, &ctx.device));
     vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
 
-    ctx.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
-        vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
+    ctx.cmdPushDescriptorSet =
+        reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
     if (!ctx.cmdPushDescriptorSet)
         throw Error("vkCmdPushDescriptorSetKHR is missing although the device lists VK_KHR_push_descriptor");
 

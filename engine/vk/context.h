@@ -20,14 +20,14 @@ namespace meadow {
 class MemoryAllocator;
 
 struct ContextOptions {
-    bool validation = false;           // VK_LAYER_KHRONOS_validation with synchronization validation
-    std::string deviceOverride;        // empty: automatic choice
+    bool validation = false;                     // VK_LAYER_KHRONOS_validation with synchronization validation
+    std::string deviceOverride;                  // empty: automatic choice
     std::vector<std::string> instanceExtensions; // e.g. what GLFW needs for a surface
-    bool presentation = false;         // the queue must be able to present (window target)
+    bool presentation = false;                   // the queue must be able to present (window target)
     // Whether queue family `family` of a device can present (the window target answers this
     // through GLFW, so the core needs no windowing library).
     std::function<bool(VkInstance, VkPhysicalDevice, uint32_t family)> presentSupport;
-    bool verbose = false;              // print which device was chosen
+    bool verbose = false; // print which device was chosen
 };
 
 // Counts the messages the validation layer sends. Each message is printed to stderr as it comes.

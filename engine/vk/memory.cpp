@@ -63,8 +63,8 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUse 
             continue;
         if (auto offset = block.ranges->allocate(req.size, alignment)) {
             bytesInUse_ += req.size;
-            return {block.memory, *offset, req.size, type, b,
-                    block.mapped ? static_cast<char*>(block.mapped) + *offset : nullptr};
+            return {block.memory, *offset, req.size,
+                    type,         b,       block.mapped ? static_cast<char*>(block.mapped) + *offset : nullptr};
         }
     }
 
@@ -158,8 +158,8 @@ Image createImage2D(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsa
     viewInfo.image = image.image;
     viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
     viewInfo.format = format;
-    viewInfo.subresourceRange = {static_cast<VkImageAspectFlags>(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
-                                 0, 1, 0, 1};
+    viewInfo.subresourceRange = {
+        static_cast<VkImageAspectFlags>(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 1, 0, 1};
     VK_CHECK(vkCreateImageView(ctx.device, &viewInfo, nullptr, &image.view));
     return image;
 }

@@ -33,7 +33,7 @@ struct Allocation {
 };
 
 class MemoryAllocator {
-public:
+  public:
     static constexpr VkDeviceSize kBlockSize = 64ull << 20;
 
     explicit MemoryAllocator(Context& context);
@@ -46,7 +46,7 @@ public:
 
     VkDeviceSize bytesInUse() const { return bytesInUse_; }
 
-private:
+  private:
     struct Block {
         VkDeviceMemory memory = VK_NULL_HANDLE;
         void* mapped = nullptr;

@@ -56,7 +56,8 @@ struct Binding {
 
 // Binds the pipeline and pushes its descriptors: `bindings` must list every binding the
 // pipeline's shaders declare, in order from 0.
-void bindPipeline(Context& context, VkCommandBuffer cmd, const Pipeline& pipeline, std::initializer_list<Binding> bindings);
+void bindPipeline(Context& context, VkCommandBuffer cmd, const Pipeline& pipeline,
+                  std::initializer_list<Binding> bindings);
 
 // Dispatches enough workgroups to cover `x` by `y` items with the pipeline's workgroup size.
 void dispatchCovering(VkCommandBuffer cmd, const Pipeline& pipeline, uint32_t x, uint32_t y = 1);

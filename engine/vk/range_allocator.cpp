@@ -37,8 +37,8 @@ void RangeAllocator::free(uint64_t offset, uint64_t size) {
     if (size == 0)
         size = 1;
     assert(offset + size <= size_);
-    auto it = std::lower_bound(free_.begin(), free_.end(), offset,
-                               [](const Range& r, uint64_t o) { return r.offset < o; });
+    auto it =
+        std::lower_bound(free_.begin(), free_.end(), offset, [](const Range& r, uint64_t o) { return r.offset < o; });
     it = free_.insert(it, {offset, size});
     // Merge with the next range, then with the previous one.
     if (it + 1 != free_.end() && it->offset + it->size == (it + 1)->offset) {

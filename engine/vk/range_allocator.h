@@ -9,7 +9,7 @@
 namespace meadow {
 
 class RangeAllocator {
-public:
+  public:
     explicit RangeAllocator(uint64_t size);
 
     // Offset of a new range of `size` bytes aligned to `alignment` (a power of two), or nothing
@@ -23,7 +23,7 @@ public:
     bool empty() const { return freeBytes() == size_; }
     size_t freeRangeCount() const { return free_.size(); }
 
-private:
+  private:
     struct Range {
         uint64_t offset;
         uint64_t size;

@@ -98,10 +98,14 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
             }
             break;
         case kOpDecorate:
-            if (w[2] == kDecorationBlock) id(1).block = true;
-            if (w[2] == kDecorationBufferBlock) id(1).bufferBlock = true;
-            if (w[2] == kDecorationBinding && words >= 4) id(1).binding = w[3];
-            if (w[2] == kDecorationDescriptorSet && words >= 4) id(1).set = w[3];
+            if (w[2] == kDecorationBlock)
+                id(1).block = true;
+            if (w[2] == kDecorationBufferBlock)
+                id(1).bufferBlock = true;
+            if (w[2] == kDecorationBinding && words >= 4)
+                id(1).binding = w[3];
+            if (w[2] == kDecorationDescriptorSet && words >= 4)
+                id(1).set = w[3];
             break;
         case kOpTypeImage:
             id(1).opcode = opcode;
@@ -109,9 +113,7 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
             break;
         case kOpTypeSampler:
         case kOpTypeSampledImage:
-        case kOpTypeStruct:
-            id(1).opcode = opcode;
-            break;
+        case kOpTypeStruct: id(1).opcode = opcode; break;
         case kOpTypeArray:
         case kOpTypeRuntimeArray:
             id(1).opcode = opcode;
@@ -175,7 +177,8 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
         else if (type.opcode == kOpTypeSampler)
             descriptor = VK_DESCRIPTOR_TYPE_SAMPLER;
         else
-            throw Error("shader " + name + ": binding " + std::to_string(var.binding) + " has a resource type meadow "
+            throw Error("shader " + name + ": binding " + std::to_string(var.binding) +
+                        " has a resource type meadow "
                         "does not support");
         out.bindings[var.binding] = descriptor;
     }

@@ -13,7 +13,7 @@ namespace meadow {
 
 struct ShaderReflection {
     VkShaderStageFlagBits stage = VK_SHADER_STAGE_ALL;
-    uint32_t localSize[3] = {0, 0, 0};           // compute only
+    uint32_t localSize[3] = {0, 0, 0};             // compute only
     std::map<uint32_t, VkDescriptorType> bindings; // binding index -> type
     bool usesPushConstants = false;
 };

@@ -28,8 +28,8 @@ std::string vkResultName(VkResult result) {
 }
 
 void throwVkError(const char* call, VkResult result, const char* file, int line) {
-    throw Error(std::string("Vulkan call failed: ") + call + " returned " + vkResultName(result) + " (" +
-                file + ":" + std::to_string(line) + ")");
+    throw Error(std::string("Vulkan call failed: ") + call + " returned " + vkResultName(result) + " (" + file + ":" +
+                std::to_string(line) + ")");
 }
 
 } // namespace meadow

@@ -16,9 +16,9 @@ std::string vkResultName(VkResult result);
 
 } // namespace meadow
 
-#define VK_CHECK(call)                                                          \
-    do {                                                                        \
-        VkResult vkCheckResult_ = (call);                                       \
-        if (vkCheckResult_ != VK_SUCCESS)                                       \
-            ::meadow::throwVkError(#call, vkCheckResult_, __FILE__, __LINE__); \
+#define VK_CHECK(call)                                                                                                 \
+    do {                                                                                                               \
+        VkResult vkCheckResult_ = (call);                                                                              \
+        if (vkCheckResult_ != VK_SUCCESS)                                                                              \
+            ::meadow::throwVkError(#call, vkCheckResult_, __FILE__, __LINE__);                                         \
     } while (0)

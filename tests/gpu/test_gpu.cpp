@@ -20,7 +20,7 @@ using namespace meadow;
 namespace {
 
 class Gpu : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         context = new Context;
         ContextOptions options;
@@ -47,8 +47,8 @@ std::vector<gpu::GpuInstance> scatter(uint32_t count, uint32_t seed) {
         return float(s >> 40) / float(1 << 24);
     };
     for (gpu::GpuInstance& inst : out) {
-        inst.positionScale = glm::vec4(next() * 400.0f - 200.0f, next() * 40.0f - 10.0f, next() * 400.0f - 200.0f,
-                                       0.2f + next() * 3.0f);
+        inst.positionScale =
+            glm::vec4(next() * 400.0f - 200.0f, next() * 40.0f - 10.0f, next() * 400.0f - 200.0f, 0.2f + next() * 3.0f);
         inst.boundsTint = glm::vec4(0.2f + next() * 2.0f, next() * 6.28f, next(), 0.0f);
     }
     return out;
@@ -83,8 +83,8 @@ TEST_F(Gpu, SubAllocatorSharesBlocksAndReturnsMemory) {
     VkDeviceSize before = context->memory->bytesInUse();
     std::vector<Buffer> buffers;
     for (int i = 0; i < 64; ++i)
-        buffers.push_back(createBuffer(*context, 4096 + 17 * VkDeviceSize(i), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                       MemoryUse::Device));
+        buffers.push_back(
+            createBuffer(*context, 4096 + 17 * VkDeviceSize(i), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Device));
     // Sixty-four small buffers fit in one block.
     for (const Buffer& b : buffers)
         EXPECT_EQ(b.allocation.memory, buffers[0].allocation.memory);
@@ -118,8 +118,8 @@ TEST_F(Gpu, CullPassMatchesCpuReference) {
         camera.target = v.target;
         camera.fovYDegrees = v.fov;
         camera.farCull = v.farCull;
-        gpu::GpuFrame frame =
-            makeFrameUniforms(camera, 64.0f / 48.0f, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.indexCount, 0);
+        gpu::GpuFrame frame = makeFrameUniforms(camera, 64.0f / 48.0f, skyForTimeOfDay(12.0f), renderer.instanceCount,
+                                                renderer.indexCount, 0);
         renderOffscreenFrame(*context, renderer, offscreen, frame);
 
         gpu::GpuDrawIndexedCommand draw;

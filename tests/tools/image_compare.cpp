@@ -66,10 +66,14 @@ int main(int argc, char** argv) {
     float threshold = -1.0f, percent = -1.0f;
     const char* diffPath = nullptr;
     for (int i = 3; i + 1 < argc; i += 2) {
-        if (std::strcmp(argv[i], "--fail-threshold") == 0) threshold = std::strtof(argv[i + 1], nullptr);
-        else if (std::strcmp(argv[i], "--fail-percent") == 0) percent = std::strtof(argv[i + 1], nullptr);
-        else if (std::strcmp(argv[i], "--diff") == 0) diffPath = argv[i + 1];
-        else return usage();
+        if (std::strcmp(argv[i], "--fail-threshold") == 0)
+            threshold = std::strtof(argv[i + 1], nullptr);
+        else if (std::strcmp(argv[i], "--fail-percent") == 0)
+            percent = std::strtof(argv[i + 1], nullptr);
+        else if (std::strcmp(argv[i], "--diff") == 0)
+            diffPath = argv[i + 1];
+        else
+            return usage();
     }
     if (threshold < 0.0f || percent < 0.0f)
         return usage();

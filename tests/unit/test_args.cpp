@@ -6,7 +6,9 @@
 using namespace meadow;
 
 namespace {
-CommandSpec renderSpec() { return {"render", {"SCENE"}, {"--out", "--size", "--frames", "--camera"}, {"--validation"}}; }
+CommandSpec renderSpec() {
+    return {"render", {"SCENE"}, {"--out", "--size", "--frames", "--camera"}, {"--validation"}};
+}
 } // namespace
 
 TEST(Args, ParsesValuesSwitchesAndPositionals) {
@@ -31,8 +33,8 @@ TEST(Args, RejectsUnknownOptionsByName) {
 TEST(Args, RejectsMissingAndExtraPositionals) {
     EXPECT_THROW(parseArgs(renderSpec(), {}), Error);
     EXPECT_THROW(parseArgs(renderSpec(), {"a.json", "b.json"}), Error);
-    EXPECT_THROW(parseArgs(renderSpec(), {"a.json", "--out"}), Error);           // value missing
-    EXPECT_THROW(parseArgs(renderSpec(), {"a.json", "--validation=1"}), Error);  // switch with value
+    EXPECT_THROW(parseArgs(renderSpec(), {"a.json", "--out"}), Error);          // value missing
+    EXPECT_THROW(parseArgs(renderSpec(), {"a.json", "--validation=1"}), Error); // switch with value
     EXPECT_THROW(parseArgs(renderSpec(), {"a.json", "--out", "a", "--out", "b"}), Error);
 }
 

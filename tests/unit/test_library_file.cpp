@@ -22,7 +22,8 @@ std::vector<uint8_t> readAll(const std::filesystem::path& p) {
 }
 
 void writeAll(const std::filesystem::path& p, const std::vector<uint8_t>& bytes) {
-    std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(p, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 std::string readError(const std::filesystem::path& p) {

@@ -46,10 +46,15 @@ TEST(RangeAllocator, FreeMergesNeighbours) {
 
 TEST(RangeAllocator, RandomChurnNeverOverlaps) {
     RangeAllocator a(1 << 16);
-    struct Live { uint64_t offset, size; };
+    struct Live {
+        uint64_t offset, size;
+    };
     std::vector<Live> live;
     uint64_t state = 12345;
-    auto next = [&] { state = state * 6364136223846793005ull + 1442695040888963407ull; return state >> 33; };
+    auto next = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return state >> 33;
+    };
     for (int step = 0; step < 5000; ++step) {
         if (!live.empty() && next() % 2 == 0) {
             size_t i = next() % live.size();

@@ -60,11 +60,11 @@ TEST(Scene, ErrorsNameTheFileAndTheKey) {
     std::string typo = errorOf(writeScene("typo.json", R"({"name": "t", "seed": 1, "tesField": {}})"));
     EXPECT_NE(typo.find("typo.json"), std::string::npos) << typo;
     EXPECT_NE(typo.find("tesField is not a known key"), std::string::npos) << typo;
-    std::string range = errorOf(writeScene("range.json",
-        R"({"name": "t", "seed": 1, "testField": {"countX": 0, "countZ": 1, "spacing": 1}})"));
+    std::string range = errorOf(
+        writeScene("range.json", R"({"name": "t", "seed": 1, "testField": {"countX": 0, "countZ": 1, "spacing": 1}})"));
     EXPECT_NE(range.find("testField.countX must be between 1 and 4096"), std::string::npos) << range;
-    std::string type = errorOf(writeScene("type.json",
-        R"({"name": "t", "seed": 1, "testField": {"countX": 1, "countZ": 1, "spacing": "far"}})"));
+    std::string type = errorOf(writeScene(
+        "type.json", R"({"name": "t", "seed": 1, "testField": {"countX": 1, "countZ": 1, "spacing": "far"}})"));
     EXPECT_NE(type.find("testField.spacing must be a number"), std::string::npos) << type;
     EXPECT_NE(errorOf(writeScene("name.json", R"({"name": "../x", "seed": 1})")).find("name may hold only"),
               std::string::npos);
