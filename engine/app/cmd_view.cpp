@@ -32,6 +32,8 @@ options:
   --no-vsync            present without waiting for vertical blank when the driver allows
   --frames N            quit by itself after N frames (for scripts and tests)
   --resize WxH          after a third of --frames, resize the window to WxH (tests)
+  --minimize            after two thirds of --frames, minimise the window for half a second,
+                        then restore it (tests; needs a window manager)
   --screenshot FILE     on exit, write the last frame shown to FILE (.png)
   --preset, --seed, --device, --validation, --verbose   as for meadow render
 )";
@@ -81,7 +83,7 @@ int runView(const Args& argv) {
     CommandSpec spec{"view",
                      {"SCENE"},
                      {"--size", "--time-of-day", "--camera", "--frames", "--resize", "--screenshot"},
-                     {"--no-vsync"}};
+                     {"--no-vsync", "--minimize"}};
     addSceneOptions(spec);
     addEngineOptions(spec);
     ParsedArgs args = parseArgs(spec, argv);
@@ -93,6 +95,9 @@ int runView(const Args& argv) {
             throw Error("meadow view: --resize needs --frames");
         resizeTo = args.size("--resize", {0, 0});
     }
+    bool minimizeTest = args.has("--minimize");
+    if (minimizeTest && !args.has("--frames"))
+        throw Error("meadow view: --minimize needs --frames");
     std::optional<std::filesystem::path> screenshot;
     if (auto s = args.value("--screenshot")) {
         if (imageKindForPath(*s) != ImageFileKind::Png)
@@ -127,6 +132,8 @@ int runView(const Args& argv) {
         auto last = std::chrono::steady_clock::now();
         double fpsClock = 0.0;
         uint32_t fpsFrames = 0;
+        bool paused = false, minimizeRequested = false;
+        std::chrono::steady_clock::time_point pausedSince;
         while (!glfwWindowShouldClose(window.window)) {
             glfwPollEvents();
             if (glfwGetKey(window.window, GLFW_KEY_ESCAPE) == GLFW_PRESS)
@@ -136,11 +143,35 @@ int runView(const Args& argv) {
             if (resizeTo && frame == maxFrames / 3)
                 glfwSetWindowSize(window.window, int(resizeTo->first), int(resizeTo->second));
 
-            // Minimised: wait for the window to come back rather than spin.
+            if (minimizeTest && !minimizeRequested && frame == 2 * maxFrames / 3) {
+                glfwIconifyWindow(window.window);
+                minimizeRequested = true;
+                // The window manager acts asynchronously; give it up to two seconds.
+                auto asked = std::chrono::steady_clock::now();
+                while (!glfwGetWindowAttrib(window.window, GLFW_ICONIFIED) &&
+                       std::chrono::steady_clock::now() - asked < std::chrono::seconds(2))
+                    glfwWaitEventsTimeout(0.05);
+            }
+
+            // Minimised (iconified, or a zero-sized framebuffer on platforms that shrink it):
+            // nothing is visible, so render nothing and wait for the window to come back.
             VkExtent2D fb = framebufferExtent(window);
-            if (fb.width == 0 || fb.height == 0) {
-                glfwWaitEventsTimeout(0.1);
+            if (fb.width == 0 || fb.height == 0 || glfwGetWindowAttrib(window.window, GLFW_ICONIFIED)) {
+                auto now = std::chrono::steady_clock::now();
+                if (!paused) {
+                    std::fprintf(stderr, "meadow: window minimised; rendering paused\n");
+                    paused = true;
+                    pausedSince = now;
+                }
+                if (minimizeTest && now - pausedSince > std::chrono::milliseconds(500))
+                    glfwRestoreWindow(window.window);
+                glfwWaitEventsTimeout(0.05);
                 continue;
+            }
+            if (paused) {
+                std::fprintf(stderr, "meadow: window restored; rendering resumed\n");
+                paused = false;
+                last = std::chrono::steady_clock::now();
             }
             if (window.swapchain == VK_NULL_HANDLE || fb.width != window.extent.width ||
                 fb.height != window.extent.height) {
