@@ -10,6 +10,8 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools spirv-tools
   # windowing, math, assets, images
   libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev openimageio-tools
+  # precompute: linear algebra (PCA), parallel loops
+  libeigen3-dev libtbb-dev
   # tests: GoogleTest, an X server and a window manager (so minimising is real) for window tests
   libgtest-dev xvfb xauth openbox
 )
