@@ -2,18 +2,23 @@
 
 #include "core/error.h"
 #include "core/library_file.h"
+#include "plants/atlas.h"
+#include "plants/gltf_import.h"
+#include "plants/iris.h"
 #include "random.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <tbb/parallel_for.h>
 
 namespace meadow {
 namespace {
 
 // Bump when what precompute produces changes for the same inputs.
-constexpr uint32_t kPrecomputeVersion = 1;
+constexpr uint32_t kPrecomputeVersion = 2;
 
 std::string hex(uint64_t v) {
     char buf[17];
@@ -21,15 +26,192 @@ std::string hex(uint64_t v) {
     return buf;
 }
 
+// --- clumps ---------------------------------------------------------------------------------
+
+void writeClump(ByteWriter& w, const ClumpMotion& m) {
+    Mesh mesh = clumpRenderMesh(m);
+    w.string(m.clump.name);
+    w.u32(m.clump.plants);
+    std::vector<float> vertexData;
+    vertexData.reserve(mesh.vertices.size() * 8);
+    for (const gpu::GpuVertex& v : mesh.vertices)
+        for (int i = 0; i < 4; ++i)
+            vertexData.push_back(v.positionU[i]);
+    for (const gpu::GpuVertex& v : mesh.vertices)
+        for (int i = 0; i < 4; ++i)
+            vertexData.push_back(v.normalV[i]);
+    w.f32s(vertexData);
+    w.u32s(mesh.indices);
+    w.f32(mesh.boundingRadius);
+
+    const uint32_t frames = uint32_t(m.pca.coords.cols());
+    const uint32_t rank = m.lodRanks[0];
+    w.u32(frames);
+    w.u32(rank);
+    for (uint32_t r : m.lodRanks)
+        w.u32(r);
+    Eigen::MatrixXf basis = m.pca.basis.leftCols(Eigen::Index(rank));
+    w.f32s(std::vector<float>(basis.data(), basis.data() + basis.size()));
+    Eigen::MatrixXf coords = m.pca.coords.topRows(Eigen::Index(rank));
+    w.f32s(std::vector<float>(coords.data(), coords.data() + coords.size()));
+    std::vector<float> errors(m.pca.relativeErrorPerRank.begin(), m.pca.relativeErrorPerRank.end());
+    w.f32s(errors);
+
+    const MotionGraph& g = m.graph;
+    w.u32(g.nodeCount);
+    w.u32(g.levelCount);
+    w.u32(g.edgeCount);
+    w.u32(g.blendFrames);
+    w.u8s(g.nodeLevel);
+    w.u8s(g.nodeAlive);
+    w.u32s(g.naturalNext);
+    w.u32s(g.edgeStart);
+    w.u32s(g.edgeTarget);
+    w.u8s(g.edgeIsTransition);
+    w.f32s(g.edgeProbability);
+    w.u32s(g.edgeWeight);
+    w.f32s(g.futureCost);
+    w.u32(g.stronglyConnected ? 1 : 0);
+    w.u8s(g.levelStronglyConnected);
+    w.u32(g.removedNodes);
+    w.u32(g.transitionCount);
+    w.u32(g.crossLevelTransitionCount);
+
+    w.u32(uint32_t(m.levels.size()));
+    for (const LevelStats& s : m.levels) {
+        w.f32(s.meanSpeed);
+        w.u32(s.frames);
+        w.f32(s.maxPenetration);
+        w.f32(float(s.maxKineticEnergy));
+        w.f32(float(s.kineticEnergyFirstHalf));
+        w.f32(float(s.kineticEnergySecondHalf));
+        w.f32(float(s.maxAirDivergence));
+    }
+}
+
+LibraryClump readClump(ByteReader& r, const std::string& where) {
+    auto fail = [&](const std::string& what) -> Error { return Error(where + ": " + what); };
+    LibraryClump c;
+    c.name = r.string();
+    c.plants = r.u32();
+    std::vector<float> vertexData = r.f32s();
+    if (vertexData.size() % 8 != 0)
+        throw fail("clump " + c.name + ": vertex data is not a whole number of vertices");
+    size_t vertices = vertexData.size() / 8;
+    c.mesh.vertices.resize(vertices);
+    for (size_t v = 0; v < vertices; ++v)
+        for (int i = 0; i < 4; ++i) {
+            c.mesh.vertices[v].positionU[i] = vertexData[v * 4 + size_t(i)];
+            c.mesh.vertices[v].normalV[i] = vertexData[vertices * 4 + v * 4 + size_t(i)];
+        }
+    c.mesh.indices = r.u32s();
+    c.mesh.boundingRadius = r.f32();
+    if (c.mesh.indices.size() % 3 != 0 || !(c.mesh.boundingRadius > 0.0f))
+        throw fail("clump " + c.name + ": inconsistent mesh");
+    for (uint32_t index : c.mesh.indices)
+        if (index >= vertices)
+            throw fail("clump " + c.name + ": a triangle index is out of range");
+    for (float f : vertexData)
+        if (!std::isfinite(f))
+            throw fail("clump " + c.name + ": a vertex holds a non-finite value");
+
+    c.frames = r.u32();
+    c.motionRank = r.u32();
+    for (uint32_t& rank : c.lodRanks)
+        rank = r.u32();
+    c.basis = r.f32s();
+    c.coords = r.f32s();
+    c.pcaRelativeError = r.f32s();
+    if (c.basis.size() != vertices * 3 * c.motionRank || c.coords.size() != size_t(c.motionRank) * c.frames ||
+        c.lodRanks[0] != c.motionRank)
+        throw fail("clump " + c.name + ": motion basis or coordinates have the wrong size");
+
+    MotionGraph& g = c.graph;
+    g.nodeCount = r.u32();
+    g.levelCount = r.u32();
+    g.edgeCount = r.u32();
+    g.blendFrames = r.u32();
+    g.nodeLevel = r.u8s();
+    g.nodeAlive = r.u8s();
+    g.naturalNext = r.u32s();
+    g.edgeStart = r.u32s();
+    g.edgeTarget = r.u32s();
+    g.edgeIsTransition = r.u8s();
+    g.edgeProbability = r.f32s();
+    g.edgeWeight = r.u32s();
+    g.futureCost = r.f32s();
+    g.stronglyConnected = r.u32() != 0;
+    g.levelStronglyConnected = r.u8s();
+    g.removedNodes = r.u32();
+    g.transitionCount = r.u32();
+    g.crossLevelTransitionCount = r.u32();
+    const size_t n = g.nodeCount, e = g.edgeCount, l = g.levelCount;
+    if (n != c.frames || g.nodeLevel.size() != n || g.nodeAlive.size() != n || g.naturalNext.size() != n ||
+        g.edgeStart.size() != n + 1 || g.edgeTarget.size() != e || g.edgeIsTransition.size() != e ||
+        g.edgeProbability.size() != e || g.edgeWeight.size() != l * e || g.futureCost.size() != l * n ||
+        g.levelStronglyConnected.size() != l || g.edgeStart.back() != e)
+        throw fail("clump " + c.name + ": motion graph tables have inconsistent sizes");
+    for (size_t i = 0; i < n; ++i)
+        if (g.edgeStart[i] > g.edgeStart[i + 1])
+            throw fail("clump " + c.name + ": motion graph edge offsets are not ordered");
+    for (uint32_t target : g.edgeTarget)
+        if (target >= n)
+            throw fail("clump " + c.name + ": a motion graph edge leads outside the graph");
+
+    uint32_t levelCount = r.u32();
+    if (levelCount != l)
+        throw fail("clump " + c.name + ": simulation statistics for " + std::to_string(levelCount) +
+                   " levels, graph has " + std::to_string(l));
+    for (uint32_t i = 0; i < levelCount; ++i) {
+        LevelStats s;
+        s.meanSpeed = r.f32();
+        s.frames = r.u32();
+        s.maxPenetration = r.f32();
+        s.maxKineticEnergy = r.f32();
+        s.kineticEnergyFirstHalf = r.f32();
+        s.kineticEnergySecondHalf = r.f32();
+        s.maxAirDivergence = r.f32();
+        c.levels.push_back(s);
+    }
+    return c;
+}
+
+std::vector<PlantClump> makePlants(const Scene& scene) {
+    if (scene.plants.source == "gltf") {
+        PlantClump plant = importGltfPlant(scene.plants.gltf);
+        // An imported plant carries its own texture coordinates, but meadow draws every clump
+        // with the iris atlas: give it the leaf region's colours.
+        glm::vec2 leaf = 0.5f * (irisAtlasRegion(PartKind::Leaf).min + irisAtlasRegion(PartKind::Leaf).max);
+        for (glm::vec2& uv : plant.mesh.uvs)
+            uv = leaf;
+        return {plant};
+    }
+    return makeIrisClumps(scene.seed, scene.plants.clumps, irisParamsForPreset(scene.preset));
+}
+
 } // namespace
+
+std::vector<Mesh> clumpMeshes(const Library& library) {
+    std::vector<Mesh> meshes;
+    for (const LibraryClump& c : library.clumps)
+        meshes.push_back(c.mesh);
+    return meshes;
+}
 
 uint64_t libraryInputHash(const Scene& scene) {
     std::string key = scene.resolved.dump() + "|" + scene.preset + "|" + std::to_string(scene.seed) + "|" +
                       std::to_string(kLibraryFormatVersion) + "|" + std::to_string(kPrecomputeVersion);
-    return fnv1a64(key.data(), key.size());
+    uint64_t hash = fnv1a64(key.data(), key.size());
+    if (scene.plants.source == "gltf") {
+        // The imported file is an input too: its bytes, not only its name.
+        std::ifstream in(scene.plants.gltf, std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        hash = fnv1a64(bytes.data(), bytes.size(), hash);
+    }
+    return hash;
 }
 
-std::vector<gpu::GpuInstance> placeTestField(const Scene& scene, float meshRadius) {
+std::vector<gpu::GpuInstance> placeField(const Scene& scene, const std::vector<float>& clumpRadii) {
     const TestFieldParams& p = scene.testField;
     Random rng(scene.seed ^ 0x7465737466696c64ull); // "testfild"
     std::vector<gpu::GpuInstance> out;
@@ -42,11 +224,12 @@ std::vector<gpu::GpuInstance> placeTestField(const Scene& scene, float meshRadiu
             float jx = rng.uniform(-p.jitter, p.jitter) * p.spacing;
             float jz = rng.uniform(-p.jitter, p.jitter) * p.spacing;
             float scale = rng.uniform(p.scaleMin, p.scaleMax);
-            float yaw = rng.uniform(0.0f, 6.2831853f);
-            float hue = rng.uniform();
+            inst.yaw = rng.uniform(-0.35f, 0.35f); // limited: the wind has one direction
+            inst.tint = rng.uniform();
+            inst.mesh = uint32_t(rng.next() % clumpRadii.size());
+            inst.boundingRadius = clumpRadii[inst.mesh];
             inst.positionScale =
                 glm::vec4(originX + p.spacing * float(x) + jx, 0.0f, originZ + p.spacing * float(z) + jz, scale);
-            inst.boundsTint = glm::vec4(meshRadius, yaw, hue, 0.0f);
             out.push_back(inst);
         }
     }
@@ -55,44 +238,67 @@ std::vector<gpu::GpuInstance> placeTestField(const Scene& scene, float meshRadiu
 
 void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool quiet) {
     auto start = std::chrono::steady_clock::now();
-    if (!quiet)
-        std::fprintf(stderr, "meadow: precompute %s (preset %s, seed %llu)\n", scene.name.c_str(), scene.preset.c_str(),
-                     static_cast<unsigned long long>(scene.seed));
+    auto say = [&](const char* fmt, auto... args) {
+        if (quiet)
+            return;
+        double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "meadow: [%6.1f s] ", t);
+        std::fprintf(stderr, fmt, args...);
+        std::fprintf(stderr, "\n");
+    };
+    say("precompute %s (preset %s, seed %llu)", scene.name.c_str(), scene.preset.c_str(),
+        static_cast<unsigned long long>(scene.seed));
     LibraryFile file;
     file.inputHash = libraryInputHash(scene);
     std::string sceneText = scene.resolved.dump(2);
     file.sections["SCNE"] = std::vector<uint8_t>(sceneText.begin(), sceneText.end());
 
-    if (!quiet)
-        std::fprintf(stderr, "meadow: [1/2] stand-in plant mesh\n");
-    Mesh mesh = makeTuftMesh();
+    std::vector<PlantClump> plants = makePlants(scene);
+    say("plants: %zu clumps (%s)", plants.size(), scene.plants.source.c_str());
+    TextureAtlas atlas = makeIrisAtlas(irisParamsForPreset(scene.preset).atlasSize, scene.seed);
     {
         ByteWriter w;
-        w.u32(static_cast<uint32_t>(mesh.vertices.size()));
-        w.u32(static_cast<uint32_t>(mesh.indices.size()));
-        w.f32(mesh.boundingRadius);
-        for (const gpu::GpuVertex& v : mesh.vertices)
-            for (int i = 0; i < 4; ++i)
-                w.f32(v.positionU[i]);
-        for (const gpu::GpuVertex& v : mesh.vertices)
-            for (int i = 0; i < 4; ++i)
-                w.f32(v.normalV[i]);
-        for (uint32_t index : mesh.indices)
-            w.u32(index);
-        file.sections["TMSH"] = w.take();
+        w.u32(atlas.width);
+        w.u32(atlas.height);
+        w.bytes(atlas.rgba.data(), atlas.rgba.size());
+        file.sections["ATLS"] = w.take();
     }
 
-    if (!quiet)
-        std::fprintf(stderr, "meadow: [2/2] test field: %u x %u instances\n", scene.testField.countX,
-                     scene.testField.countZ);
-    std::vector<gpu::GpuInstance> field = placeTestField(scene, mesh.boundingRadius);
+    say("motion: simulating %zu clumps x %zu wind levels, %.1f s each", plants.size(), scene.wind.levelSpeeds.size(),
+        double(scene.motion.recordSeconds));
+    std::vector<ClumpMotion> motions(plants.size());
+    tbb::parallel_for(size_t(0), plants.size(),
+                      [&](size_t i) { motions[i] = buildClumpMotion(plants[i], scene, scene.seed * 1000003ull + i); });
+    ByteWriter clumps;
+    clumps.u32(uint32_t(motions.size()));
+    std::vector<float> radii;
+    for (const ClumpMotion& m : motions) {
+        say("clump %s: %zu vertices, %zu triangles, %u frames, LOD0 %u modes (%.2f%% error), graph %u nodes %u edges, "
+            "max penetration %.1f mm (simulate %.1f s, PCA %.1f s, graph %.1f s)",
+            m.clump.name.c_str(), m.clump.mesh.positions.size(), m.clump.mesh.indices.size() / 3,
+            uint32_t(m.pca.coords.cols()), m.lodRanks[0], m.pca.relativeErrorPerRank[m.lodRanks[0]] * 100.0,
+            m.graph.nodeCount, m.graph.edgeCount,
+            double(std::max_element(m.levels.begin(), m.levels.end(),
+                                    [](auto& a, auto& b) { return a.maxPenetration < b.maxPenetration; })
+                       ->maxPenetration *
+                   1000.0f),
+            m.simulateSeconds, m.pcaSeconds, m.graphSeconds);
+        writeClump(clumps, m);
+        radii.push_back(clumpRenderMesh(m).boundingRadius);
+    }
+    file.sections["CLMP"] = clumps.take();
+
+    std::vector<gpu::GpuInstance> field = placeField(scene, radii);
+    say("field: %zu instances", field.size());
     ByteWriter w;
     w.u32(static_cast<uint32_t>(field.size()));
     for (const gpu::GpuInstance& inst : field) {
         for (int i = 0; i < 4; ++i)
             w.f32(inst.positionScale[i]);
-        for (int i = 0; i < 4; ++i)
-            w.f32(inst.boundsTint[i]);
+        w.f32(inst.yaw);
+        w.f32(inst.boundingRadius);
+        w.f32(inst.tint);
+        w.u32(inst.mesh);
     }
     file.sections["TFLD"] = w.take();
 
@@ -100,10 +306,7 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     if (!path.parent_path().empty())
         std::filesystem::create_directories(path.parent_path(), ec);
     writeLibraryFile(path, file);
-    if (!quiet) {
-        double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::fprintf(stderr, "meadow: wrote %s in %.2f s\n", path.string().c_str(), seconds);
-    }
+    say("wrote %s", path.string().c_str());
 }
 
 Library loadLibrary(const std::filesystem::path& path) {
@@ -130,26 +333,23 @@ Library loadLibrary(const std::filesystem::path& path) {
     }
 
     {
-        ByteReader m(section("TMSH"), where + ": section 'TMSH'");
-        uint32_t vertexCount = m.u32(), indexCount = m.u32();
-        lib.testMesh.boundingRadius = m.f32();
-        if (uint64_t(vertexCount) * 32 + uint64_t(indexCount) * 4 != m.remaining() || indexCount % 3 != 0 ||
-            !(lib.testMesh.boundingRadius > 0.0f))
-            throw Error(where + ": section 'TMSH' is inconsistent");
-        lib.testMesh.vertices.resize(vertexCount);
-        for (gpu::GpuVertex& v : lib.testMesh.vertices)
-            for (int i = 0; i < 4; ++i)
-                v.positionU[i] = m.f32();
-        for (gpu::GpuVertex& v : lib.testMesh.vertices)
-            for (int i = 0; i < 4; ++i)
-                v.normalV[i] = m.f32();
-        lib.testMesh.indices.resize(indexCount);
-        for (uint32_t& index : lib.testMesh.indices) {
-            index = m.u32();
-            if (index >= vertexCount)
-                throw Error(where + ": section 'TMSH' has an index out of range");
-        }
-        m.expectEnd();
+        ByteReader r(section("ATLS"), where + ": section 'ATLS'");
+        lib.atlas.width = r.u32();
+        lib.atlas.height = r.u32();
+        if (lib.atlas.width == 0 || lib.atlas.height == 0 || lib.atlas.width > 16384 || lib.atlas.height > 16384 ||
+            uint64_t(lib.atlas.width) * lib.atlas.height * 4 != r.remaining())
+            throw Error(where + ": section 'ATLS' has the wrong size for its atlas");
+        lib.atlas.rgba.resize(r.remaining());
+        r.bytes(lib.atlas.rgba.data(), lib.atlas.rgba.size());
+    }
+    {
+        ByteReader r(section("CLMP"), where + ": section 'CLMP'");
+        uint32_t count = r.u32();
+        if (count == 0 || count > 64)
+            throw Error(where + ": section 'CLMP' holds " + std::to_string(count) + " clumps");
+        for (uint32_t i = 0; i < count; ++i)
+            lib.clumps.push_back(readClump(r, where + ": section 'CLMP'"));
+        r.expectEnd();
     }
 
     ByteReader r(section("TFLD"), where + ": section 'TFLD'");
@@ -157,15 +357,22 @@ Library loadLibrary(const std::filesystem::path& path) {
     if (uint64_t(count) * 32 != r.remaining())
         throw Error(where + ": section 'TFLD' holds " + std::to_string(r.remaining()) + " bytes for " +
                     std::to_string(count) + " instances");
-    lib.testField.resize(count);
-    for (gpu::GpuInstance& inst : lib.testField) {
+    lib.field.resize(count);
+    for (gpu::GpuInstance& inst : lib.field) {
         for (int i = 0; i < 4; ++i)
             inst.positionScale[i] = r.f32();
+        inst.yaw = r.f32();
+        inst.boundingRadius = r.f32();
+        inst.tint = r.f32();
+        inst.mesh = r.u32();
+        bool finite = std::isfinite(inst.yaw) && std::isfinite(inst.boundingRadius) && std::isfinite(inst.tint);
         for (int i = 0; i < 4; ++i)
-            inst.boundsTint[i] = r.f32();
-        for (int i = 0; i < 4; ++i)
-            if (!std::isfinite(inst.positionScale[i]) || !std::isfinite(inst.boundsTint[i]))
-                throw Error(where + ": section 'TFLD' holds a non-finite value");
+            finite = finite && std::isfinite(inst.positionScale[i]);
+        if (!finite)
+            throw Error(where + ": section 'TFLD' holds a non-finite value");
+        if (inst.mesh >= lib.clumps.size())
+            throw Error(where + ": section 'TFLD' names clump " + std::to_string(inst.mesh) + " of " +
+                        std::to_string(lib.clumps.size()));
     }
     r.expectEnd();
     return lib;

@@ -1,15 +1,17 @@
-// A scene's library: everything precomputed for it, loaded by the engine. For now it holds the
-// resolved scene and the test field's instances; later stages add their sections.
+// A scene's library: everything precomputed for it, loaded by the engine (DESIGN.md 2.9).
 //
-// Sections: "SCNE" the resolved scene as JSON text; "TMSH" the stand-in plant mesh (u32
-// vertex count, u32 index count, f32 bounding radius, then 8 floats per vertex and the u32
-// indices); "TFLD" the test field (u32 count, then per instance the 8 floats of
-// gpu::GpuInstance).
+// Sections (little-endian, see core/library_file.h for the container):
+//   "SCNE" the resolved scene as JSON text
+//   "CLMP" the clumps: per clump its mesh at the mean pose, its motion basis and coordinates,
+//          its motion graph and the statistics of its simulation
+//   "ATLS" the plants' texture atlas: u32 width, u32 height, 8-bit sRGB RGBA texels
+//   "TFLD" the field: u32 count, then per instance gpu::GpuInstance (4 + 4 words)
 #pragma once
 
+#include "clump_motion.h"
 #include "gpu_types.h"
+#include "mesh.h"
 #include "scene.h"
-#include "test_mesh.h"
 
 #include <filesystem>
 #include <string>
@@ -17,21 +19,42 @@
 
 namespace meadow {
 
+// What the engine and `meadow inspect` need of one clump.
+struct LibraryClump {
+    std::string name;
+    uint32_t plants = 0;
+    Mesh mesh;               // the mean pose, atlas UVs
+    uint32_t frames = 0;     // motion frames, all levels
+    uint32_t motionRank = 0; // basis columns stored (= LOD0's modes)
+    std::array<uint32_t, kLodCount> lodRanks{};
+    std::vector<float> basis;            // 3 * vertices x motionRank, column-major (x̄ + U q)
+    std::vector<float> coords;           // motionRank x frames, column-major (q of each frame)
+    std::vector<float> pcaRelativeError; // per rank from 0
+    MotionGraph graph;
+    std::vector<LevelStats> levels;
+};
+
 struct Library {
     nlohmann::json scene; // resolved scene (preset merged, effective seed)
-    Mesh testMesh;
-    std::vector<gpu::GpuInstance> testField;
+    std::vector<LibraryClump> clumps;
+    RgbaImage atlas;
+    std::vector<gpu::GpuInstance> field;
     uint32_t formatVersion = 0;
     uint64_t inputHash = 0;
     uint64_t fileBytes = 0;
     std::vector<std::string> sections;
+    double buildSeconds = 0.0; // as recorded when built
 };
+
+// The clumps' meshes, in clump order (GpuInstance::mesh indexes them).
+std::vector<Mesh> clumpMeshes(const Library& library);
 
 // What the library of `scene` would be built from, hashed: scene, preset, seed, format.
 uint64_t libraryInputHash(const Scene& scene);
 
-// The test field's instances: a jittered grid centred on the origin, random yaw, scale, tint.
-std::vector<gpu::GpuInstance> placeTestField(const Scene& scene, float meshRadius);
+// The field's instances: a jittered grid centred on the origin; each instance a random clump
+// with a random yaw, scale and tint.
+std::vector<gpu::GpuInstance> placeField(const Scene& scene, const std::vector<float>& clumpRadii);
 
 // Builds the library of `scene` and writes it to `path` (atomically). Progress goes to stderr.
 void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool quiet = false);

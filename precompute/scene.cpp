@@ -86,7 +86,9 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     } catch (const json::parse_error& e) {
         throw Error("scene " + path.string() + ": invalid JSON: " + e.what());
     }
-    check.onlyKeys(doc, "", {"name", "description", "seed", "presets", "testField", "camera", "timeOfDay"});
+    check.onlyKeys(
+        doc, "",
+        {"name", "description", "seed", "presets", "testField", "camera", "timeOfDay", "plants", "wind", "motion"});
 
     // Merge the preset's overrides over the base description.
     json resolved = doc;
@@ -150,6 +152,58 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     }
     if (resolved.contains("timeOfDay"))
         scene.timeOfDay = check.number(resolved["timeOfDay"], "timeOfDay", 0.0f, 24.0f);
+
+    if (resolved.contains("plants")) {
+        const json& plants = resolved["plants"];
+        check.onlyKeys(plants, "plants", {"source", "clumps", "gltf"});
+        const json& source = plants.value("source", json("iris"));
+        if (!source.is_string() || (source != "iris" && source != "gltf"))
+            check.fail("plants.source", "must be \"iris\" or \"gltf\" (got " + source.dump() + ")");
+        scene.plants.source = source.get<std::string>();
+        scene.plants.clumps = check.count(plants.value("clumps", json(4)), "plants.clumps", 1, 16);
+        if (scene.plants.source == "gltf") {
+            const json& file = check.require(plants, "plants", "gltf");
+            if (!file.is_string() || file.get<std::string>().empty())
+                check.fail("plants.gltf", "must be a file name");
+            scene.plants.gltf = path.parent_path() / file.get<std::string>();
+            scene.plants.clumps = 1;
+        }
+    }
+    if (resolved.contains("wind")) {
+        const json& wind = resolved["wind"];
+        check.onlyKeys(wind, "wind", {"direction", "levels", "turbulence", "gustPeriod"});
+        if (wind.contains("direction")) {
+            glm::vec3 d = check.vec3(wind["direction"], "wind.direction");
+            d.y = 0.0f;
+            if (glm::length(d) < 1e-3f)
+                check.fail("wind.direction", "must have a horizontal component");
+            scene.wind.direction = glm::normalize(d);
+        }
+        if (wind.contains("levels")) {
+            const json& levels = wind["levels"];
+            if (!levels.is_array() || levels.size() < 2 || levels.size() > 8)
+                check.fail("wind.levels", "must be an array of 2 to 8 speeds, calm first");
+            scene.wind.levelSpeeds.clear();
+            for (size_t i = 0; i < levels.size(); ++i) {
+                float speed = check.number(levels[i], "wind.levels[" + std::to_string(i) + "]", 0.0f, 30.0f);
+                if (i > 0 && speed <= scene.wind.levelSpeeds.back())
+                    check.fail("wind.levels", "must increase from calm to strong");
+                scene.wind.levelSpeeds.push_back(speed);
+            }
+        }
+        scene.wind.turbulence = check.number(wind.value("turbulence", json(0.3)), "wind.turbulence", 0.0f, 1.0f);
+        scene.wind.gustPeriod = check.number(wind.value("gustPeriod", json(4.0)), "wind.gustPeriod", 0.2f, 60.0f);
+    }
+    if (resolved.contains("motion")) {
+        const json& motion = resolved["motion"];
+        check.onlyKeys(motion, "motion", {"frameRate", "substeps", "settleSeconds", "recordSeconds", "lod0MaxError"});
+        MotionParams& m = scene.motion;
+        m.frameRate = check.number(motion.value("frameRate", json(30.0)), "motion.frameRate", 10.0f, 120.0f);
+        m.substeps = check.count(motion.value("substeps", json(20)), "motion.substeps", 4, 200);
+        m.settleSeconds = check.number(motion.value("settleSeconds", json(2.0)), "motion.settleSeconds", 0.0f, 60.0f);
+        m.recordSeconds = check.number(motion.value("recordSeconds", json(20.0)), "motion.recordSeconds", 0.5f, 300.0f);
+        m.lod0MaxError = check.number(motion.value("lod0MaxError", json(0.01)), "motion.lod0MaxError", 1e-4f, 0.5f);
+    }
 
     scene.resolved = std::move(resolved);
     return scene;

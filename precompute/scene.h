@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace meadow {
 
@@ -28,6 +29,30 @@ struct SceneCamera {
     float fovYDegrees = 55.0f;
 };
 
+// Where the clumps come from: procedural irises, or a user's glTF plant.
+struct PlantsParams {
+    std::string source = "iris"; // "iris" or "gltf"
+    uint32_t clumps = 4;         // procedural clump variants
+    std::filesystem::path gltf;  // source "gltf": the file, relative to the scene file
+};
+
+// The wind the clumps are simulated in: one direction, one mean speed per level (calm first).
+struct WindParams {
+    glm::vec3 direction{1.0f, 0.0f, 0.0f};                  // horizontal unit vector
+    std::vector<float> levelSpeeds{0.7f, 2.0f, 4.0f, 7.0f}; // m/s at 1 m
+    float turbulence = 0.3f;
+    float gustPeriod = 4.0f; // s
+};
+
+// How long each level is simulated and how the motion is reduced.
+struct MotionParams {
+    float frameRate = 30.0f;     // recorded frames per second
+    uint32_t substeps = 20;      // rod substeps per frame
+    float settleSeconds = 2.0f;  // simulated before recording
+    float recordSeconds = 20.0f; // recorded per level
+    float lod0MaxError = 0.01f;  // relative PCA error allowed at LOD0
+};
+
 struct Scene {
     std::filesystem::path path;
     std::string name;
@@ -36,6 +61,9 @@ struct Scene {
     TestFieldParams testField;
     SceneCamera camera;
     float timeOfDay = 12.0f; // local solar hours
+    PlantsParams plants;
+    WindParams wind;
+    MotionParams motion;
     nlohmann::json resolved; // the scene after the preset merge, with the effective seed
 };
 

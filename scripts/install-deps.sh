@@ -13,7 +13,7 @@ packages=(
   # precompute: linear algebra (PCA), parallel loops
   libeigen3-dev libtbb-dev
   # tests: GoogleTest, an X server and a window manager (so minimising is real) for window tests
-  libgtest-dev xvfb xauth openbox
+  libgtest-dev xvfb xauth openbox python3
 )
 
 missing=()

@@ -2,6 +2,7 @@
 #include "app/commands.h"
 #include "app/session.h"
 #include "core/error.h"
+#include "core/library_file.h"
 
 #include <cstdio>
 #include <fstream>
@@ -9,10 +10,11 @@
 namespace meadow {
 namespace {
 
-const char* kPrecomputeHelp = R"(usage: meadow precompute SCENE [--preset ci|full] [--seed S] [--out LIB]
+const char* kPrecomputeHelp = R"(usage: meadow precompute SCENE [--preset ci|full] [--seed S] [--out LIB] [--force]
 
 Builds the library of SCENE (a scene JSON file) and writes it to LIB, by default to the
-library cache ($MEADOW_CACHE_DIR, else ~/.cache/meadow). Prints the library's path.
+library cache ($MEADOW_CACHE_DIR, else ~/.cache/meadow). Prints the library's path. A library
+already there that was built from the same scene, preset and seed is kept (--force rebuilds).
 )";
 
 const char* kInspectHelp = R"(usage: meadow inspect LIB --json
@@ -25,7 +27,7 @@ Checks a library file and prints facts about it as JSON on stdout.
 int runPrecompute(const Args& argv) {
     if (printHelpIfAsked(argv, kPrecomputeHelp))
         return 0;
-    CommandSpec spec{"precompute", {"SCENE"}, {"--out"}, {}};
+    CommandSpec spec{"precompute", {"SCENE"}, {"--out"}, {"--force"}};
     addSceneOptions(spec);
     ParsedArgs args = parseArgs(spec, argv);
     Scene scene = sceneFromArgs(args);
@@ -38,6 +40,18 @@ int runPrecompute(const Args& argv) {
         std::filesystem::create_directories(out.parent_path(), ec);
         if (ec)
             throw Error("cannot create the library cache folder " + out.parent_path().string() + ": " + ec.message());
+    }
+    // An unchanged scene's library is reused: same inputs, and it reads back whole.
+    uint64_t hash = 0;
+    if (!args.has("--force") && peekLibraryInputHash(out, hash) && hash == libraryInputHash(scene)) {
+        try {
+            loadLibrary(out);
+            std::fprintf(stderr, "meadow: %s is up to date\n", out.string().c_str());
+            std::printf("%s\n", out.string().c_str());
+            return 0;
+        } catch (const Error& e) {
+            std::fprintf(stderr, "meadow: rebuilding: %s\n", e.what());
+        }
     }
     buildLibrary(scene, out);
     loadLibrary(out); // what was written must read back
@@ -60,9 +74,48 @@ int runInspect(const Args& argv) {
     j["bytes"] = lib.fileBytes;
     j["sections"] = lib.sections;
     j["scene"] = {{"name", lib.scene.value("name", "")}, {"seed", lib.scene.value("seed", 0)}};
-    j["testField"] = {{"instances", lib.testField.size()},
-                      {"meshVertices", lib.testMesh.vertices.size()},
-                      {"meshTriangles", lib.testMesh.indices.size() / 3}};
+    j["clumps"] = nlohmann::json::array();
+    for (const LibraryClump& c : lib.clumps) {
+        nlohmann::json clump;
+        clump["name"] = c.name;
+        clump["plants"] = c.plants;
+        // Levels of detail by simplification are later work: LOD0, the full mesh, is all there is.
+        clump["lods"] = {{{"vertices", c.mesh.vertices.size()},
+                          {"triangles", c.mesh.indices.size() / 3},
+                          {"motionModes", c.lodRanks[0]}}};
+        const MotionGraph& g = c.graph;
+        uint32_t levelsConnected = 0;
+        for (uint8_t connected : g.levelStronglyConnected)
+            levelsConnected += connected ? 1 : 0;
+        nlohmann::json levels = nlohmann::json::array();
+        for (const LevelStats& s : c.levels)
+            levels.push_back({{"meanSpeed", s.meanSpeed},
+                              {"frames", s.frames},
+                              {"maxPenetration", s.maxPenetration},
+                              {"maxKineticEnergy", s.maxKineticEnergy},
+                              {"kineticEnergyFirstHalf", s.kineticEnergyFirstHalf},
+                              {"kineticEnergySecondHalf", s.kineticEnergySecondHalf},
+                              {"maxAirDivergence", s.maxAirDivergence}});
+        clump["motion"] = {{"frames", c.frames},
+                           {"windLevels", g.levelCount},
+                           {"pcaRelError", c.pcaRelativeError},
+                           {"motionModesPerLod", c.lodRanks},
+                           {"graph",
+                            {{"nodes", g.nodeCount - g.removedNodes},
+                             {"edges", g.edgeCount},
+                             {"transitions", g.transitionCount},
+                             {"crossLevelTransitions", g.crossLevelTransitionCount},
+                             {"removedNodes", g.removedNodes},
+                             {"stronglyConnected", g.stronglyConnected},
+                             {"levelsStronglyConnected", levelsConnected == g.levelCount}}},
+                           {"levels", levels}};
+        j["clumps"].push_back(clump);
+    }
+    uint32_t plants = 0;
+    for (const gpu::GpuInstance& inst : lib.field)
+        plants += lib.clumps[inst.mesh].plants;
+    j["field"] = {{"clumps", lib.field.size()}, {"plants", plants}};
+    j["atlas"] = {{"width", lib.atlas.width}, {"height", lib.atlas.height}};
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
 }

@@ -110,12 +110,12 @@ int runRender(const Args& argv) {
     createContext(ctx, contextOptionsFromArgs(args));
     int status = 0;
     {
-        FieldRenderer renderer = createFieldRenderer(ctx, library.testMesh, library.testField);
+        FieldRenderer renderer = createFieldRenderer(ctx, clumpMeshes(library), library.field, library.atlas);
         Offscreen offscreen = createOffscreen(ctx, {width, height});
         SkyState sky = skyForTimeOfDay(timeOfDay);
         for (uint32_t i = 0; i < frames; ++i) {
             gpu::GpuFrame frame = makeFrameUniforms(camera, float(width) / float(height), sky, renderer.instanceCount,
-                                                    renderer.indexCount, i);
+                                                    renderer.meshCount, i);
             renderOffscreenFrame(ctx, renderer, offscreen, frame);
             std::filesystem::path path = framePath(out, i, frames);
             if (kind == ImageFileKind::Png)
@@ -155,7 +155,7 @@ int runBench(const Args& argv) {
     auto [width, height] = args.size("--size", {1280, 720});
     Scene scene = sceneFromArgs(args);
     Library library = ensureLibrary(scene);
-    std::vector<gpu::GpuInstance> field = library.testField;
+    std::vector<gpu::GpuInstance> field = library.field;
     if (args.has("--clumps"))
         field = tileField(field, args.u32("--clumps", 0, 1, 50'000'000));
     Camera camera = cameraFromArgs(args, scene);
@@ -164,7 +164,7 @@ int runBench(const Args& argv) {
     createContext(ctx, contextOptionsFromArgs(args));
     nlohmann::json j;
     {
-        FieldRenderer renderer = createFieldRenderer(ctx, library.testMesh, field);
+        FieldRenderer renderer = createFieldRenderer(ctx, clumpMeshes(library), field, library.atlas);
         Offscreen offscreen = createOffscreen(ctx, {width, height});
         SkyState sky = skyForTimeOfDay(scene.timeOfDay);
         std::vector<double> frameMs, cpuMs;
@@ -172,7 +172,7 @@ int runBench(const Args& argv) {
         const uint32_t warmup = 5;
         for (uint32_t i = 0; i < warmup + frames; ++i) {
             gpu::GpuFrame frame = makeFrameUniforms(camera, float(width) / float(height), sky, renderer.instanceCount,
-                                                    renderer.indexCount, i);
+                                                    renderer.meshCount, i);
             FrameTimings t = renderOffscreenFrame(ctx, renderer, offscreen, frame);
             if (i < warmup)
                 continue;
@@ -204,6 +204,7 @@ int runBench(const Args& argv) {
         j["uploadBytesPerFrame"] = sizeof(gpu::GpuFrame);
         j["trianglesPerFrame"] = stats.trianglesDrawn;
         j["instancesPerLod"] = {stats.visibleInstances};
+        j["instancesPerClump"] = stats.visiblePerMesh;
         destroyOffscreen(ctx, offscreen);
         destroyFieldRenderer(ctx, renderer);
     }

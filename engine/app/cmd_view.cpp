@@ -119,7 +119,7 @@ int runView(const Args& argv) {
     createContext(ctx, options);
     int status = 0;
     {
-        FieldRenderer renderer = createFieldRenderer(ctx, library.testMesh, library.testField);
+        FieldRenderer renderer = createFieldRenderer(ctx, clumpMeshes(library), library.field, library.atlas);
         Window window = createWindow(ctx, "meadow — " + scene.name, width, height);
         window.vsync = !args.has("--no-vsync");
         GpuTimer timer = createGpuTimer(ctx, 16);
@@ -215,7 +215,7 @@ int runView(const Args& argv) {
             camera.target = fly.eye + fly.forward();
             updateFrameUniforms(renderer,
                                 makeFrameUniforms(camera, float(targets.extent.width) / float(targets.extent.height),
-                                                  sky, renderer.instanceCount, renderer.indexCount, frame));
+                                                  sky, renderer.instanceCount, renderer.meshCount, frame));
 
             VK_CHECK(vkResetCommandBuffer(window.cmd, 0));
             VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};

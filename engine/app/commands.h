@@ -14,6 +14,8 @@ int runInspect(const Args& args);
 int runRender(const Args& args);
 int runBench(const Args& args);
 int runView(const Args& args);
+int runSheet(const Args& args);
+int runSheet(const Args& args);
 
 // True when `args` asks for help; prints `text` then.
 bool printHelpIfAsked(const Args& args, const char* text);

@@ -30,6 +30,7 @@ commands:
   render SCENE       offscreen frames to PNG or EXR
   view SCENE         the interactive walkthrough window
   bench SCENE        timings as JSON
+  sheet SCENE        an image sheet of one clump's motion at every wind level
 
 Scenes live in data/scenes (the default is data/scenes/irises.json).
 `meadow <command> --help` tells more.
@@ -60,7 +61,10 @@ int main(int argc, char** argv) {
             return runBench(args);
         if (command == "view")
             return runView(args);
-        std::fprintf(stderr, "meadow: unknown command '%s' (commands: precompute, inspect, render, view, bench)\n",
+        if (command == "sheet")
+            return runSheet(args);
+        std::fprintf(stderr,
+                     "meadow: unknown command '%s' (commands: precompute, inspect, render, view, bench, sheet)\n",
                      command.c_str());
         return 2;
     } catch (const Error& e) {

@@ -56,6 +56,55 @@ void ByteWriter::bytes(const void* data, size_t size) {
     data_.insert(data_.end(), p, p + size);
 }
 
+void ByteWriter::string(const std::string& s) {
+    u32(static_cast<uint32_t>(s.size()));
+    bytes(s.data(), s.size());
+}
+void ByteWriter::u8s(const std::vector<uint8_t>& v) {
+    u32(static_cast<uint32_t>(v.size()));
+    bytes(v.data(), v.size());
+}
+void ByteWriter::u32s(const std::vector<uint32_t>& v) {
+    u32(static_cast<uint32_t>(v.size()));
+    for (uint32_t x : v)
+        u32(x);
+}
+void ByteWriter::f32s(const std::vector<float>& v) {
+    u32(static_cast<uint32_t>(v.size()));
+    for (float x : v)
+        f32(x);
+}
+
+size_t ByteReader::checkedCount(size_t elementSize, size_t maxCount) {
+    size_t count = u32();
+    if (count > maxCount || count > remaining() / elementSize)
+        throw Error(context_ + ": an array of " + std::to_string(count) + " elements at offset " + std::to_string(at_) +
+                    " does not fit (corrupt file)");
+    return count;
+}
+std::string ByteReader::string() {
+    std::string s(checkedCount(1, 1 << 20), '\0');
+    bytes(s.data(), s.size());
+    return s;
+}
+std::vector<uint8_t> ByteReader::u8s(size_t maxCount) {
+    std::vector<uint8_t> v(checkedCount(1, maxCount));
+    bytes(v.data(), v.size());
+    return v;
+}
+std::vector<uint32_t> ByteReader::u32s(size_t maxCount) {
+    std::vector<uint32_t> v(checkedCount(4, maxCount));
+    for (uint32_t& x : v)
+        x = u32();
+    return v;
+}
+std::vector<float> ByteReader::f32s(size_t maxCount) {
+    std::vector<float> v(checkedCount(4, maxCount));
+    for (float& x : v)
+        x = f32();
+    return v;
+}
+
 uint32_t ByteReader::u32() {
     uint8_t b[4];
     bytes(b, 4);

@@ -19,7 +19,7 @@
 
 namespace meadow {
 
-inline constexpr uint32_t kLibraryFormatVersion = 1;
+inline constexpr uint32_t kLibraryFormatVersion = 2;
 
 uint64_t fnv1a64(const void* data, size_t size, uint64_t seed = 0xcbf29ce484222325ull);
 
@@ -43,6 +43,11 @@ class ByteWriter {
     void u64(uint64_t v);
     void f32(float v);
     void bytes(const void* data, size_t size);
+    void string(const std::string& s);
+    // A u32 count, then the elements.
+    void u8s(const std::vector<uint8_t>& v);
+    void u32s(const std::vector<uint32_t>& v);
+    void f32s(const std::vector<float>& v);
     std::vector<uint8_t> take() { return std::move(data_); }
 
   private:
@@ -56,11 +61,17 @@ class ByteReader {
     uint64_t u64();
     float f32();
     void bytes(void* out, size_t size);
+    std::string string();
+    // A u32 count, then the elements; throws if the count exceeds `maxCount` or the data left.
+    std::vector<uint8_t> u8s(size_t maxCount = ~size_t(0));
+    std::vector<uint32_t> u32s(size_t maxCount = ~size_t(0));
+    std::vector<float> f32s(size_t maxCount = ~size_t(0));
     size_t remaining() const { return data_.size() - at_; }
     // Throws unless every byte was consumed.
     void expectEnd() const;
 
   private:
+    size_t checkedCount(size_t elementSize, size_t maxCount);
     const std::vector<uint8_t>& data_;
     std::string context_;
     size_t at_ = 0;

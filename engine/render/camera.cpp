@@ -54,7 +54,7 @@ SkyState skyForTimeOfDay(float hours) {
 }
 
 gpu::GpuFrame makeFrameUniforms(const Camera& camera, float aspect, const SkyState& sky, uint32_t instanceCount,
-                                uint32_t indicesPerMesh, uint32_t frameIndex) {
+                                uint32_t meshCount, uint32_t frameIndex) {
     gpu::GpuFrame f{};
     f.viewProj = projectionMatrix(camera, aspect) * viewMatrix(camera);
     f.inverseViewProj = glm::inverse(f.viewProj);
@@ -66,7 +66,7 @@ gpu::GpuFrame makeFrameUniforms(const Camera& camera, float aspect, const SkySta
     f.sunColor = glm::vec4(sky.sunColor, 0.0f);
     f.skyZenith = glm::vec4(sky.zenith, sky.exposure);
     f.skyHorizon = glm::vec4(sky.horizon, 0.0f);
-    f.counts = glm::uvec4(instanceCount, indicesPerMesh, frameIndex, 0u);
+    f.counts = glm::uvec4(instanceCount, meshCount, frameIndex, 0u);
     return f;
 }
 

@@ -37,6 +37,6 @@ struct SkyState {
 SkyState skyForTimeOfDay(float hours);
 
 gpu::GpuFrame makeFrameUniforms(const Camera& camera, float aspect, const SkyState& sky, uint32_t instanceCount,
-                                uint32_t indicesPerMesh, uint32_t frameIndex);
+                                uint32_t meshCount, uint32_t frameIndex);
 
 } // namespace meadow

@@ -13,8 +13,8 @@ struct Sphere {
 Sphere boundingSphere(const gpu::GpuInstance& inst) {
     float scale = inst.positionScale.w;
     // Same expression order as cull.comp.glsl.
-    glm::vec3 center = glm::vec3(inst.positionScale) + glm::vec3(0.0f, inst.boundsTint.x * scale * 0.5f, 0.0f);
-    return {center, inst.boundsTint.x * scale};
+    glm::vec3 center = glm::vec3(inst.positionScale) + glm::vec3(0.0f, inst.boundingRadius * scale * 0.5f, 0.0f);
+    return {center, inst.boundingRadius * scale};
 }
 
 float planeDistance(const glm::vec4& plane, const glm::vec3& p) {

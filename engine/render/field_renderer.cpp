@@ -10,12 +10,17 @@
 
 namespace meadow {
 
-FieldRenderer createFieldRenderer(Context& ctx, const Mesh& mesh, std::span<const gpu::GpuInstance> instances) {
+FieldRenderer createFieldRenderer(Context& ctx, std::span<const Mesh> meshes,
+                                  std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas) {
     if (instances.empty())
         throw Error("the field has no instances to draw");
+    if (meshes.empty())
+        throw Error("the field has no meshes to draw");
+    if (atlas.rgba.size() != size_t(atlas.width) * atlas.height * 4 || atlas.width == 0)
+        throw Error("the field's texture atlas is empty or the wrong size");
     FieldRenderer r;
     r.instanceCount = static_cast<uint32_t>(instances.size());
-    r.indexCount = static_cast<uint32_t>(mesh.indices.size());
+    r.meshCount = static_cast<uint32_t>(meshes.size());
 
     r.cull = createComputePipeline(ctx, "cull.comp");
     r.tonemap = createComputePipeline(ctx, "tonemap.comp");
@@ -29,28 +34,59 @@ FieldRenderer createFieldRenderer(Context& ctx, const Mesh& mesh, std::span<cons
     r.instance =
         createGraphicsPipeline(ctx, GraphicsPipelineDesc{"instance.vert", "instance.frag", kHdrFormat, kDepthFormat});
 
+    // All meshes share one vertex and one index buffer; each gets one indirect draw whose
+    // instance range in the visible list holds room for all of that mesh's instances.
+    std::vector<gpu::GpuVertex> vertices;
+    std::vector<uint32_t> indices;
+    std::vector<gpu::GpuDrawIndexedCommand> draws(meshes.size());
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        draws[m].indexCount = uint32_t(meshes[m].indices.size());
+        draws[m].firstIndex = uint32_t(indices.size());
+        draws[m].vertexOffset = int32_t(vertices.size());
+        vertices.insert(vertices.end(), meshes[m].vertices.begin(), meshes[m].vertices.end());
+        indices.insert(indices.end(), meshes[m].indices.begin(), meshes[m].indices.end());
+        r.meshTriangles.push_back(uint32_t(meshes[m].indices.size() / 3));
+    }
+    std::vector<uint32_t> perMesh(meshes.size(), 0);
+    for (const gpu::GpuInstance& inst : instances) {
+        if (inst.mesh >= meshes.size())
+            throw Error("a field instance names mesh " + std::to_string(inst.mesh) + " of " +
+                        std::to_string(meshes.size()));
+        perMesh[inst.mesh]++;
+    }
+    uint32_t first = 0;
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        draws[m].firstInstance = first;
+        first += perMesh[m];
+    }
+
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     r.frameUniforms = createBuffer(ctx, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload);
     r.instances = createBuffer(ctx, instances.size_bytes(), storage, MemoryUse::Device);
-    r.vertices = createBuffer(ctx, mesh.vertices.size() * sizeof(gpu::GpuVertex), storage, MemoryUse::Device);
-    r.indices = createBuffer(ctx, mesh.indices.size() * sizeof(uint32_t),
+    r.vertices = createBuffer(ctx, vertices.size() * sizeof(gpu::GpuVertex), storage, MemoryUse::Device);
+    r.indices = createBuffer(ctx, indices.size() * sizeof(uint32_t),
                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
-    r.drawCommand = createBuffer(ctx, sizeof(gpu::GpuDrawIndexedCommand),
-                                 storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                 MemoryUse::Device);
+    VkDeviceSize drawBytes = draws.size() * sizeof(gpu::GpuDrawIndexedCommand);
+    r.drawCommands =
+        createBuffer(ctx, drawBytes, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                     MemoryUse::Device);
+    r.drawCommandTemplate = createBuffer(
+        ctx, drawBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
     r.visibleList = createBuffer(ctx, instances.size() * sizeof(uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                  MemoryUse::Device);
     r.stats =
         createBuffer(ctx, sizeof(gpu::GpuCullStats), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device);
     r.statsReadback =
-        createBuffer(ctx, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
-    std::memset(r.statsReadback.mapped(), 0, sizeof(gpu::GpuCullStats));
+        createBuffer(ctx, sizeof(gpu::GpuCullStats) + drawBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+    std::memset(r.statsReadback.mapped(), 0, r.statsReadback.size);
 
     uploadToBuffer(ctx, r.instances, instances.data(), instances.size_bytes());
-    uploadToBuffer(ctx, r.vertices, mesh.vertices.data(), r.vertices.size);
-    uploadToBuffer(ctx, r.indices, mesh.indices.data(), r.indices.size);
-    gpu::GpuDrawIndexedCommand draw{r.indexCount, 0, 0, 0, 0};
-    uploadToBuffer(ctx, r.drawCommand, &draw, sizeof(draw));
+    uploadToBuffer(ctx, r.vertices, vertices.data(), r.vertices.size);
+    uploadToBuffer(ctx, r.indices, indices.data(), r.indices.size);
+    uploadToBuffer(ctx, r.drawCommandTemplate, draws.data(), drawBytes);
+    uploadToBuffer(ctx, r.drawCommands, draws.data(), drawBytes);
+    r.atlas = createTexture(ctx, {atlas.width, atlas.height}, VK_FORMAT_R8G8B8A8_SRGB, atlas.rgba.data());
+    r.sampler = createLinearSampler(ctx);
 
     // The ground covers the field's extent with a wide margin so its edge stays out of view.
     glm::vec3 lo(1e30f), hi(-1e30f);
@@ -67,9 +103,12 @@ FieldRenderer createFieldRenderer(Context& ctx, const Mesh& mesh, std::span<cons
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.cull, &r.tonemap, &r.sky, &r.ground, &r.instance})
         destroyPipeline(ctx, *p);
-    for (Buffer* b : {&r.frameUniforms, &r.instances, &r.vertices, &r.indices, &r.drawCommand, &r.visibleList, &r.stats,
-                      &r.statsReadback})
+    for (Buffer* b : {&r.frameUniforms, &r.instances, &r.vertices, &r.indices, &r.drawCommands, &r.drawCommandTemplate,
+                      &r.visibleList, &r.stats, &r.statsReadback})
         destroyBuffer(ctx, *b);
+    destroyImage(ctx, r.atlas);
+    if (r.sampler)
+        vkDestroySampler(ctx.device, r.sampler, nullptr);
     r = FieldRenderer{};
 }
 
@@ -81,16 +120,16 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     if (timer)
         beginTimestamps(ctx, *timer, cmd);
 
-    // Reset the draw's instance count and the statistics. The previous frame read them as an
-    // indirect command, in the vertex shader and as a copy source.
+    // Reset the draws' instance counts (from the template) and the statistics. The previous frame
+    // read them as indirect commands, in the vertex shader and as copy sources.
     barrier(cmd, access::kIndirectRead | access::kVertexShaderRead | access::kComputeReadWrite | access::kTransferRead,
             access::kTransferWrite);
-    vkCmdFillBuffer(cmd, r.drawCommand.buffer, offsetof(gpu::GpuDrawIndexedCommand, instanceCount), sizeof(uint32_t),
-                    0);
+    VkBufferCopy drawsRegion{0, 0, r.drawCommands.size};
+    vkCmdCopyBuffer(cmd, r.drawCommandTemplate.buffer, r.drawCommands.buffer, 1, &drawsRegion);
     vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
 
-    bindPipeline(ctx, cmd, r.cull, {r.frameUniforms, r.instances, r.drawCommand, r.visibleList, r.stats});
+    bindPipeline(ctx, cmd, r.cull, {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats});
     dispatchCovering(cmd, r.cull, r.instanceCount);
     if (timer)
         markTimestamp(*timer, cmd, "cull");
@@ -135,9 +174,11 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
                        &r.groundCenterHalfSize);
     vkCmdDraw(cmd, 6, 1, 0, 0);
 
-    bindPipeline(ctx, cmd, r.instance, {r.frameUniforms, r.instances, r.visibleList, r.vertices});
+    bindPipeline(ctx, cmd, r.instance,
+                 {r.frameUniforms, r.instances, r.visibleList, r.vertices,
+                  Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
     vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexedIndirect(cmd, r.drawCommand.buffer, 0, 1, sizeof(gpu::GpuDrawIndexedCommand));
+    vkCmdDrawIndexedIndirect(cmd, r.drawCommands.buffer, 0, r.meshCount, sizeof(gpu::GpuDrawIndexedCommand));
     vkCmdEndRendering(cmd);
     if (timer)
         markTimestamp(*timer, cmd, "draw");
@@ -153,9 +194,11 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     if (timer)
         markTimestamp(*timer, cmd, "tonemap");
 
-    barrier(cmd, access::kComputeReadWrite, access::kTransferRead);
-    VkBufferCopy region{0, 0, sizeof(gpu::GpuCullStats)};
-    vkCmdCopyBuffer(cmd, r.stats.buffer, r.statsReadback.buffer, 1, &region);
+    barrier(cmd, access::kComputeReadWrite | access::kIndirectRead, access::kTransferRead);
+    VkBufferCopy statsRegion{0, 0, sizeof(gpu::GpuCullStats)};
+    vkCmdCopyBuffer(cmd, r.stats.buffer, r.statsReadback.buffer, 1, &statsRegion);
+    VkBufferCopy drawsBack{0, sizeof(gpu::GpuCullStats), r.drawCommands.size};
+    vkCmdCopyBuffer(cmd, r.drawCommands.buffer, r.statsReadback.buffer, 1, &drawsBack);
     barrier(cmd, access::kTransferWrite, access::kHostRead);
 }
 
@@ -165,7 +208,14 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     FieldStats out;
     out.visibleInstances = s.visibleInstances;
     out.testedInstances = s.testedInstances;
-    out.trianglesDrawn = uint64_t(s.visibleInstances) * (r.indexCount / 3) + 2 + 1;
+    std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
+    std::memcpy(draws.data(), static_cast<const char*>(r.statsReadback.mapped()) + sizeof(s),
+                draws.size() * sizeof(gpu::GpuDrawIndexedCommand));
+    out.trianglesDrawn = 2 + 1; // ground and sky
+    for (uint32_t m = 0; m < r.meshCount; ++m) {
+        out.visiblePerMesh.push_back(draws[m].instanceCount);
+        out.trianglesDrawn += uint64_t(draws[m].instanceCount) * r.meshTriangles[m];
+    }
     return out;
 }
 

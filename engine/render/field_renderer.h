@@ -1,15 +1,16 @@
 // Draws a field of instances the GPU-driven way: per frame the CPU writes one uniform block;
-// a compute pass culls the instances into a compacted visible list and the instanceCount of an
-// indirect draw; the draw reads both; a compute pass tonemaps the result.
+// a compute pass culls the instances into a compacted visible list, one range per mesh, and sets
+// each mesh's indirect draw's instanceCount; one multi-draw-indirect call reads them; a compute
+// pass tonemaps the result.
 //
-// Per frame: fill (reset counters) -> cull.comp -> sky, ground, indirect instanced draw ->
+// Per frame: reset counters (copy from a template) -> cull.comp -> sky, ground, indirect draws ->
 // tonemap.comp. GPU timestamps bracket "cull", "draw" and "tonemap".
 #pragma once
 
 #include "gpu_types.h"
+#include "mesh.h"
 #include "render/camera.h"
 #include "render/render_targets.h"
-#include "test_mesh.h"
 #include "vk/memory.h"
 #include "vk/pipeline.h"
 
@@ -31,13 +32,18 @@ struct FieldRenderer {
     Buffer instances;
     Buffer vertices;
     Buffer indices;
-    Buffer drawCommand;
+    Buffer drawCommands;        // one per mesh
+    Buffer drawCommandTemplate; // the same with instanceCount 0: copied over them every frame
     Buffer visibleList;
     Buffer stats;
     Buffer statsReadback;
 
+    Image atlas;
+    VkSampler sampler = VK_NULL_HANDLE;
+
     uint32_t instanceCount = 0;
-    uint32_t indexCount = 0;
+    uint32_t meshCount = 0;
+    std::vector<uint32_t> meshTriangles; // per mesh
     glm::vec4 groundCenterHalfSize{0.0f};
 };
 
@@ -45,9 +51,12 @@ struct FieldStats {
     uint32_t visibleInstances = 0;
     uint32_t testedInstances = 0;
     uint64_t trianglesDrawn = 0; // instances + ground + sky
+    std::vector<uint32_t> visiblePerMesh;
 };
 
-FieldRenderer createFieldRenderer(Context& context, const Mesh& mesh, std::span<const gpu::GpuInstance> instances);
+// Every instance's `mesh` must index `meshes`; its boundingRadius should be that mesh's.
+FieldRenderer createFieldRenderer(Context& context, std::span<const Mesh> meshes,
+                                  std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas);
 void destroyFieldRenderer(Context& context, FieldRenderer& renderer);
 
 // Writes the frame's uniform block. Call only when the previous frame's commands completed.

@@ -22,7 +22,10 @@ static_assert(offsetof(GpuFrame, counts) == 304);
 static_assert(sizeof(GpuFrame) == 320);
 
 static_assert(offsetof(GpuInstance, positionScale) == 0);
-static_assert(offsetof(GpuInstance, boundsTint) == 16);
+static_assert(offsetof(GpuInstance, yaw) == 16);
+static_assert(offsetof(GpuInstance, boundingRadius) == 20);
+static_assert(offsetof(GpuInstance, tint) == 24);
+static_assert(offsetof(GpuInstance, mesh) == 28);
 static_assert(sizeof(GpuInstance) == 32);
 
 static_assert(offsetof(GpuVertex, positionU) == 0);

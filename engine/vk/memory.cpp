@@ -133,15 +133,16 @@ void destroyBuffer(Context& ctx, Buffer& buffer) {
     buffer = Buffer{};
 }
 
-Image createImage2D(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage) {
+Image createImage2D(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage, uint32_t mipLevels) {
     Image image;
     image.format = format;
     image.extent = extent;
+    image.mipLevels = mipLevels;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
     info.extent = {extent.width, extent.height, 1};
-    info.mipLevels = 1;
+    info.mipLevels = mipLevels;
     info.arrayLayers = 1;
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -159,7 +160,8 @@ Image createImage2D(Context& ctx, VkExtent2D extent, VkFormat format, VkImageUsa
     viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
     viewInfo.format = format;
     viewInfo.subresourceRange = {
-        static_cast<VkImageAspectFlags>(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 1, 0, 1};
+        static_cast<VkImageAspectFlags>(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, mipLevels, 0,
+        1};
     VK_CHECK(vkCreateImageView(ctx.device, &viewInfo, nullptr, &image.view));
     return image;
 }
@@ -188,6 +190,83 @@ void uploadToBuffer(Context& ctx, const Buffer& destination, const void* data, V
         barrier(cmd, access::kTransferWrite, access::kAnyCommand);
     });
     destroyBuffer(ctx, staging);
+}
+
+Image createTexture(Context& ctx, VkExtent2D extent, VkFormat format, const void* rgba) {
+    uint32_t mips = 1;
+    while ((extent.width >> mips) > 0 || (extent.height >> mips) > 0)
+        ++mips;
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice, format, &props);
+    const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_BLIT_SRC_BIT |
+                                        VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                        VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    if ((props.optimalTilingFeatures & needed) != needed)
+        throw Error("the Vulkan device cannot sample and blit the texture format meadow uses");
+    Image image = createImage2D(
+        ctx, extent, format,
+        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, mips);
+    VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
+    Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+    std::memcpy(staging.mapped(), rgba, bytes);
+    const Access sampled{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+    submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+        auto mipBarrier = [&](uint32_t mip, Access before, VkImageLayout from, Access after, VkImageLayout to) {
+            VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+            b.srcStageMask = before.stage;
+            b.srcAccessMask = before.access;
+            b.dstStageMask = after.stage;
+            b.dstAccessMask = after.access;
+            b.oldLayout = from;
+            b.newLayout = to;
+            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.image = image.image;
+            b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 1, 0, 1};
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.imageMemoryBarrierCount = 1;
+            dep.pImageMemoryBarriers = &b;
+            vkCmdPipelineBarrier2(cmd, &dep);
+        };
+        for (uint32_t mip = 0; mip < mips; ++mip)
+            mipBarrier(mip, access::kNone, VK_IMAGE_LAYOUT_UNDEFINED, access::kTransferWrite,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {extent.width, extent.height, 1};
+        vkCmdCopyBufferToImage(cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        // Each level is a linear downsample of the one above it.
+        for (uint32_t mip = 1; mip < mips; ++mip) {
+            mipBarrier(mip - 1, access::kTransferWrite, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, access::kTransferRead,
+                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            VkImageBlit blit{};
+            blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip - 1, 0, 1};
+            blit.srcOffsets[1] = {int32_t(std::max(1u, extent.width >> (mip - 1))),
+                                  int32_t(std::max(1u, extent.height >> (mip - 1))), 1};
+            blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
+            blit.dstOffsets[1] = {int32_t(std::max(1u, extent.width >> mip)),
+                                  int32_t(std::max(1u, extent.height >> mip)), 1};
+            vkCmdBlitImage(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image.image,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+            mipBarrier(mip - 1, access::kTransferRead, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sampled,
+                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        }
+        mipBarrier(mips - 1, access::kTransferWrite, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, sampled,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    });
+    destroyBuffer(ctx, staging);
+    return image;
+}
+
+VkSampler createLinearSampler(Context& ctx) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = VK_FILTER_LINEAR;
+    info.minFilter = VK_FILTER_LINEAR;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.maxLod = VK_LOD_CLAMP_NONE;
+    VkSampler sampler;
+    VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));
+    return sampler;
 }
 
 void readbackBuffer(Context& ctx, const Buffer& source, void* data, VkDeviceSize size, VkDeviceSize sourceOffset) {

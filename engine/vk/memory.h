@@ -71,18 +71,27 @@ struct Image {
     VkImageView view = VK_NULL_HANDLE;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkExtent2D extent{};
+    uint32_t mipLevels = 1;
     Allocation allocation;
 };
 
 Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use);
 void destroyBuffer(Context& context, Buffer& buffer);
 
-Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage);
+Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
+                    uint32_t mipLevels = 1);
 void destroyImage(Context& context, Image& image);
 
 // Copies `size` bytes into a device-local buffer through a temporary staging buffer and waits.
 void uploadToBuffer(Context& context, const Buffer& destination, const void* data, VkDeviceSize size,
                     VkDeviceSize destinationOffset = 0);
+// A sampled texture from tightly packed 8-bit RGBA texels, with a full mip chain made by
+// linear blits; left in SHADER_READ_ONLY_OPTIMAL for fragment shaders. Waits for the copy.
+Image createTexture(Context& context, VkExtent2D extent, VkFormat format, const void* rgba);
+
+// A trilinear sampler that clamps to the edge (atlas regions must not bleed across the border).
+VkSampler createLinearSampler(Context& context);
+
 // Copies `size` bytes of a buffer back to host memory and waits.
 void readbackBuffer(Context& context, const Buffer& source, void* data, VkDeviceSize size,
                     VkDeviceSize sourceOffset = 0);

@@ -28,9 +28,4 @@ vec3 diffuseLight(GpuFrame f, vec3 normal) {
     return f.sunColor.rgb * sun + ambient;
 }
 
-vec3 hueToRgb(float h) {
-    vec3 k = clamp(abs(fract(h + vec3(0.0, 2.0 / 3.0, 1.0 / 3.0)) * 6.0 - 3.0) - 1.0, 0.0, 1.0);
-    return k;
-}
-
 #endif

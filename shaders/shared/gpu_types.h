@@ -32,13 +32,16 @@ struct GpuFrame {
     vec4 sunColor;         // rgb linear, w unused
     vec4 skyZenith;        // rgb linear radiance of the sky overhead, w exposure
     vec4 skyHorizon;       // rgb linear radiance of the sky at the horizon, w unused
-    uvec4 counts;          // x instance count, y indices per mesh, z frame index, w unused
+    uvec4 counts;          // x instance count, y mesh count, z frame index, w unused
 };
 
-// One instance of the test mesh (storage buffer, read by cull and the vertex shader).
+// One plant instance (storage buffer, read by cull and the vertex shader).
 struct GpuInstance {
-    vec4 positionScale; // xyz world position of the base, w uniform scale
-    vec4 boundsTint;    // x bounding-sphere radius (unscaled), y yaw (radians), z tint hue [0,1], w unused
+    vec4 positionScale;   // xyz world position of the base, w uniform scale
+    float yaw;            // radians about +y
+    float boundingRadius; // of the mesh's sphere (unscaled), centred half a radius above the base
+    float tint;           // per-instance colour variation in [0, 1]
+    uint mesh;            // which mesh (draw bucket) this instance uses
 };
 
 // One mesh vertex, pulled from a storage buffer by gl_VertexIndex.

@@ -2,10 +2,10 @@
 // the core's upload/readback, timestamps and validation plumbing. ctest runs this binary at two
 // lavapipe vector widths (LP_NATIVE_VECTOR_WIDTH=128 and 256).
 #include "core/error.h"
+#include "mesh.h"
 #include "render/cull_reference.h"
 #include "render/field_renderer.h"
 #include "render/offscreen.h"
-#include "test_mesh.h"
 #include "vk/barriers.h"
 #include "vk/context.h"
 #include "vk/memory.h"
@@ -38,7 +38,16 @@ class Gpu : public ::testing::Test {
 };
 Context* Gpu::context = nullptr;
 
-// Instances scattered in a box around the origin, some huge, some tiny, deterministic.
+// Three small meshes (draw buckets) and a plain texture for them.
+std::vector<Mesh> testMeshes() {
+    return {makeTuftMesh(9), makeTuftMesh(5), makeTuftMesh(3)};
+}
+RgbaImage testAtlas() {
+    return {4, 4, std::vector<uint8_t>(64, 200)};
+}
+
+// Instances scattered in a box around the origin, some huge, some tiny, spread over three
+// meshes; deterministic.
 std::vector<gpu::GpuInstance> scatter(uint32_t count, uint32_t seed) {
     std::vector<gpu::GpuInstance> out(count);
     uint64_t s = seed;
@@ -49,7 +58,10 @@ std::vector<gpu::GpuInstance> scatter(uint32_t count, uint32_t seed) {
     for (gpu::GpuInstance& inst : out) {
         inst.positionScale =
             glm::vec4(next() * 400.0f - 200.0f, next() * 40.0f - 10.0f, next() * 400.0f - 200.0f, 0.2f + next() * 3.0f);
-        inst.boundsTint = glm::vec4(0.2f + next() * 2.0f, next() * 6.28f, next(), 0.0f);
+        inst.boundingRadius = 0.2f + next() * 2.0f;
+        inst.yaw = next() * 6.28f;
+        inst.tint = next();
+        inst.mesh = uint32_t(next() * 3.0f) % 3;
     }
     return out;
 }
@@ -99,9 +111,8 @@ TEST_F(Gpu, SubAllocatorSharesBlocksAndReturnsMemory) {
 }
 
 TEST_F(Gpu, CullPassMatchesCpuReference) {
-    Mesh mesh = makeTuftMesh();
     std::vector<gpu::GpuInstance> instances = scatter(20011, 7); // not a multiple of the group size
-    FieldRenderer renderer = createFieldRenderer(*context, mesh, instances);
+    FieldRenderer renderer = createFieldRenderer(*context, testMeshes(), instances, testAtlas());
     Offscreen offscreen = createOffscreen(*context, {64, 48});
 
     struct View {
@@ -119,13 +130,29 @@ TEST_F(Gpu, CullPassMatchesCpuReference) {
         camera.fovYDegrees = v.fov;
         camera.farCull = v.farCull;
         gpu::GpuFrame frame = makeFrameUniforms(camera, 64.0f / 48.0f, skyForTimeOfDay(12.0f), renderer.instanceCount,
-                                                renderer.indexCount, 0);
+                                                renderer.meshCount, 0);
         renderOffscreenFrame(*context, renderer, offscreen, frame);
 
-        gpu::GpuDrawIndexedCommand draw;
-        readbackBuffer(*context, renderer.drawCommand, &draw, sizeof(draw));
-        std::vector<uint32_t> gpuVisible(draw.instanceCount);
-        readbackBuffer(*context, renderer.visibleList, gpuVisible.data(), gpuVisible.size() * 4);
+        std::vector<gpu::GpuDrawIndexedCommand> draws(renderer.meshCount);
+        readbackBuffer(*context, renderer.drawCommands, draws.data(), draws.size() * sizeof(draws[0]));
+        std::vector<uint32_t> list(renderer.instanceCount);
+        readbackBuffer(*context, renderer.visibleList, list.data(), list.size() * 4);
+        // Each mesh's visible instances lie in its own range and are of that mesh.
+        std::vector<uint32_t> gpuVisible;
+        uint32_t meshInstances = 0;
+        for (uint32_t m = 0; m < renderer.meshCount; ++m) {
+            EXPECT_EQ(draws[m].firstInstance, meshInstances);
+            uint32_t ofMesh = uint32_t(std::count_if(instances.begin(), instances.end(),
+                                                     [&](const gpu::GpuInstance& i) { return i.mesh == m; }));
+            EXPECT_LE(draws[m].instanceCount, ofMesh);
+            for (uint32_t k = 0; k < draws[m].instanceCount; ++k) {
+                uint32_t index = list[draws[m].firstInstance + k];
+                ASSERT_LT(index, instances.size());
+                EXPECT_EQ(instances[index].mesh, m);
+                gpuVisible.push_back(index);
+            }
+            meshInstances += ofMesh;
+        }
         std::sort(gpuVisible.begin(), gpuVisible.end());
         FieldStats stats = readFieldStats(renderer);
 
@@ -150,8 +177,9 @@ TEST_F(Gpu, CullPassMatchesCpuReference) {
             EXPECT_EQ(gpuVisible, expected);
         }
         EXPECT_TRUE(std::adjacent_find(gpuVisible.begin(), gpuVisible.end()) == gpuVisible.end()) << "duplicates";
-        EXPECT_EQ(draw.indexCount, renderer.indexCount);
-        EXPECT_EQ(stats.visibleInstances, draw.instanceCount);
+        EXPECT_EQ(draws[1].indexCount, testMeshes()[1].indices.size());
+        EXPECT_EQ(stats.visibleInstances, gpuVisible.size());
+        EXPECT_EQ(stats.visiblePerMesh.size(), renderer.meshCount);
         EXPECT_EQ(stats.testedInstances, renderer.instanceCount);
         EXPECT_GT(expected.size(), 0u);
         EXPECT_LT(expected.size(), instances.size());
@@ -161,14 +189,13 @@ TEST_F(Gpu, CullPassMatchesCpuReference) {
 }
 
 TEST_F(Gpu, TimestampsBracketEveryPass) {
-    Mesh mesh = makeTuftMesh();
     std::vector<gpu::GpuInstance> instances = scatter(1000, 3);
-    FieldRenderer renderer = createFieldRenderer(*context, mesh, instances);
+    FieldRenderer renderer = createFieldRenderer(*context, testMeshes(), instances, testAtlas());
     Offscreen offscreen = createOffscreen(*context, {32, 32});
     Camera camera;
     FrameTimings t = renderOffscreenFrame(
         *context, renderer, offscreen,
-        makeFrameUniforms(camera, 1.0f, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.indexCount, 0));
+        makeFrameUniforms(camera, 1.0f, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.meshCount, 0));
     ASSERT_EQ(t.gpu.size(), 3u);
     EXPECT_EQ(t.gpu[0].label, "cull");
     EXPECT_EQ(t.gpu[1].label, "draw");

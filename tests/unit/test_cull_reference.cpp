@@ -14,7 +14,7 @@ gpu::GpuFrame frameFor(const Camera& camera, float aspect = 16.0f / 9.0f) {
 gpu::GpuInstance at(glm::vec3 p, float radius = 0.5f, float scale = 1.0f) {
     gpu::GpuInstance inst{};
     inst.positionScale = glm::vec4(p, scale);
-    inst.boundsTint = glm::vec4(radius, 0.0f, 0.0f, 0.0f);
+    inst.boundingRadius = radius;
     return inst;
 }
 

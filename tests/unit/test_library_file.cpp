@@ -47,7 +47,7 @@ TEST(LibraryFile, GoldenBytesPinTheFormat) {
     writeLibraryFile(p, lib);
     std::vector<uint8_t> bytes = readAll(p);
     ASSERT_EQ(bytes.size(), 32u + 32u + 2u);
-    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 1, 0, 0, 0, 1, 0, 0, 0};
+    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 2, 0, 0, 0, 1, 0, 0, 0};
     EXPECT_EQ(std::vector<uint8_t>(bytes.begin(), bytes.begin() + 16), std::vector<uint8_t>(header, header + 16));
     EXPECT_EQ(bytes[16], 0x08); // inputHash, little-endian
     EXPECT_EQ(bytes[23], 0x01);
@@ -118,30 +118,38 @@ TEST(LibraryFile, RejectsCorruptionNamingTheFile) {
 }
 
 TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
-    Scene scene = loadScene(MEADOW_SOURCE_DIR "/data/scenes/irises.json", "ci", std::nullopt);
+    const char* tiny = MEADOW_SOURCE_DIR "/tests/data/scenes/tiny.json";
+    Scene scene = loadScene(tiny, "ci", std::nullopt);
     auto a = tempPath("det-a.mlib"), b = tempPath("det-b.mlib"), c = tempPath("det-c.mlib");
     buildLibrary(scene, a, true);
     buildLibrary(scene, b, true);
     EXPECT_EQ(readAll(a), readAll(b));
-    Scene other = loadScene(MEADOW_SOURCE_DIR "/data/scenes/irises.json", "ci", scene.seed + 1);
+    Scene other = loadScene(tiny, "ci", scene.seed + 1);
     buildLibrary(other, c, true);
     EXPECT_NE(readAll(a), readAll(c));
     EXPECT_NE(libraryInputHash(scene), libraryInputHash(other));
 
     Library lib = loadLibrary(a);
-    EXPECT_EQ(lib.testField.size(), size_t(scene.testField.countX) * scene.testField.countZ);
-    EXPECT_GT(lib.testMesh.indices.size(), 0u);
+    EXPECT_EQ(lib.field.size(), size_t(scene.testField.countX) * scene.testField.countZ);
+    ASSERT_EQ(lib.clumps.size(), 1u);
+    const LibraryClump& clump = lib.clumps[0];
+    EXPECT_GT(clump.mesh.indices.size(), 0u);
     // Every vertex lies inside the bounding sphere the cull pass uses.
-    for (const auto& v : lib.testMesh.vertices)
-        EXPECT_LE(glm::length(glm::vec3(v.positionU) - glm::vec3(0, lib.testMesh.boundingRadius * 0.5f, 0)),
-                  lib.testMesh.boundingRadius * (1.0f + 1e-6f));
+    for (const auto& v : clump.mesh.vertices)
+        EXPECT_LE(glm::length(glm::vec3(v.positionU) - glm::vec3(0, clump.mesh.boundingRadius * 0.5f, 0)),
+                  clump.mesh.boundingRadius * (1.0f + 1e-6f));
+    // Motion: both levels recorded, reduced within the scene's bound, a connected graph.
+    EXPECT_EQ(clump.frames, 2u * 45u);
+    EXPECT_LE(clump.pcaRelativeError[clump.motionRank], 0.05f + 1e-6f);
+    EXPECT_TRUE(clump.graph.stronglyConnected);
+    EXPECT_GT(lib.atlas.width, 0u);
 }
 
 TEST(Library, CorruptCacheIsRebuiltNotTrusted) {
     auto dir = tempPath("cache");
     std::filesystem::remove_all(dir);
     setenv("MEADOW_CACHE_DIR", dir.c_str(), 1);
-    Scene scene = loadScene(MEADOW_SOURCE_DIR "/data/scenes/irises.json", "ci", std::nullopt);
+    Scene scene = loadScene(MEADOW_SOURCE_DIR "/tests/data/scenes/tiny.json", "ci", std::nullopt);
     Library first = ensureLibrary(scene, true);
     auto path = cachedLibraryPath(scene);
     std::vector<uint8_t> bytes = readAll(path);
@@ -149,7 +157,7 @@ TEST(Library, CorruptCacheIsRebuiltNotTrusted) {
     writeAll(path, bytes);
     EXPECT_THROW(loadLibrary(path), Error);
     Library second = ensureLibrary(scene, true);
-    EXPECT_EQ(second.testField.size(), first.testField.size());
+    EXPECT_EQ(second.field.size(), first.field.size());
     EXPECT_NO_THROW(loadLibrary(path)); // the cache was rewritten whole
     unsetenv("MEADOW_CACHE_DIR");
 }

@@ -1,4 +1,4 @@
-#include "test_mesh.h"
+#include "mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,7 +27,6 @@ Mesh makeTuftMesh(uint32_t blades, uint32_t segments) {
             for (int e = -1; e <= 1; e += 2) {
                 glm::vec3 p = spine + side * (halfWidth * static_cast<float>(e));
                 mesh.vertices.push_back({glm::vec4(p, e < 0 ? 0.0f : 1.0f), glm::vec4(normal, t)});
-                mesh.boundingRadius = std::max(mesh.boundingRadius, glm::length(p - glm::vec3(0.0f, 0.0f, 0.0f)));
             }
             if (s > 0) {
                 uint32_t a = base + (s - 1) * 2;
@@ -35,20 +34,26 @@ Mesh makeTuftMesh(uint32_t blades, uint32_t segments) {
             }
         }
     }
-    // The cull pass centres the sphere at half the radius above the base; grow the radius until
-    // that sphere contains every vertex.
-    float r = mesh.boundingRadius;
+    mesh.fitBoundingSphere();
+    return mesh;
+}
+
+void Mesh::fitBoundingSphere() {
+    // The cull pass centres the sphere at half the radius above the base (the mesh grows up from
+    // y = 0); grow the radius until that sphere contains every vertex.
+    float r = 1e-3f;
+    for (const gpu::GpuVertex& v : vertices)
+        r = std::max(r, glm::length(glm::vec3(v.positionU)));
     for (;;) {
         glm::vec3 c(0.0f, r * 0.5f, 0.0f);
-        bool inside = std::all_of(mesh.vertices.begin(), mesh.vertices.end(), [&](const gpu::GpuVertex& v) {
+        bool inside = std::all_of(vertices.begin(), vertices.end(), [&](const gpu::GpuVertex& v) {
             return glm::length(glm::vec3(v.positionU) - c) <= r;
         });
         if (inside)
             break;
-        r *= 1.05f;
+        r *= 1.02f;
     }
-    mesh.boundingRadius = r;
-    return mesh;
+    boundingRadius = r;
 }
 
 } // namespace meadow

@@ -1,0 +1,140 @@
+// meadow sheet: an image sheet of one clump's recorded motion, one row per wind level, so a person
+// can judge the motion library at a glance.
+#include "app/commands.h"
+#include "app/session.h"
+#include "core/error.h"
+#include "io/image_io.h"
+#include "render/offscreen.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+namespace meadow {
+namespace {
+
+const char* kSheetHelp = R"(usage: meadow sheet SCENE --out FILE.png [options]
+
+Renders one clump of SCENE's library at evenly spaced frames of its recorded motion: one row per
+wind level (calm at the top), one column per frame, seen from the side so that the wind blows
+from left to right. The clump is reconstructed from its motion basis (mean + U q at LOD0).
+
+options:
+  --out FILE.png        the sheet
+  --clump K             which clump (default 0)
+  --columns N           frames per level (default 6)
+  --cell WxH            size of one cell (default 240x240)
+  --preset, --seed, --device, --validation, --verbose   as for meadow render
+)";
+
+// The clump's vertices at motion frame `frame`: x̄ + U q, with normals from the deformed
+// triangles, oriented like the mean pose's.
+Mesh reconstruct(const LibraryClump& clump, uint32_t frame) {
+    Mesh mesh = clump.mesh;
+    const size_t vertices = mesh.vertices.size();
+    const float* q = &clump.coords[size_t(frame) * clump.motionRank];
+    std::vector<glm::vec3> p(vertices);
+    for (size_t v = 0; v < vertices; ++v) {
+        glm::vec3 x = glm::vec3(mesh.vertices[v].positionU);
+        for (uint32_t k = 0; k < clump.motionRank; ++k) {
+            const float* column = &clump.basis[size_t(k) * vertices * 3];
+            x += q[k] * glm::vec3(column[3 * v], column[3 * v + 1], column[3 * v + 2]);
+        }
+        p[v] = x;
+    }
+    std::vector<glm::vec3> n(vertices, glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        glm::vec3 face = glm::cross(p[b] - p[a], p[c] - p[a]);
+        n[a] += face;
+        n[b] += face;
+        n[c] += face;
+    }
+    for (size_t v = 0; v < vertices; ++v) {
+        glm::vec3 mean = glm::vec3(mesh.vertices[v].normalV);
+        glm::vec3 normal = glm::length(n[v]) > 1e-12f ? glm::normalize(n[v]) : mean;
+        if (glm::dot(normal, mean) < 0.0f)
+            normal = -normal;
+        mesh.vertices[v].positionU = glm::vec4(p[v], mesh.vertices[v].positionU.w);
+        mesh.vertices[v].normalV = glm::vec4(normal, mesh.vertices[v].normalV.w);
+    }
+    return mesh;
+}
+
+} // namespace
+
+int runSheet(const Args& argv) {
+    if (printHelpIfAsked(argv, kSheetHelp))
+        return 0;
+    CommandSpec spec{"sheet", {"SCENE"}, {"--out", "--clump", "--columns", "--cell"}, {}};
+    addSceneOptions(spec);
+    addEngineOptions(spec);
+    ParsedArgs args = parseArgs(spec, argv);
+    if (!args.has("--out"))
+        throw Error("meadow sheet: --out FILE.png is required");
+    std::filesystem::path out = *args.value("--out");
+    if (imageKindForPath(out) != ImageFileKind::Png)
+        throw Error("meadow sheet: --out " + out.string() + ": sheets are PNG");
+    checkOutputWritable(out);
+    uint32_t columns = args.u32("--columns", 6, 1, 64);
+    auto [cellW, cellH] = args.size("--cell", {240, 240});
+    Scene scene = sceneFromArgs(args);
+    Library library = ensureLibrary(scene);
+    uint32_t clumpIndex = args.u32("--clump", 0, 0, 1000);
+    if (clumpIndex >= library.clumps.size())
+        throw Error("meadow sheet: --clump " + std::to_string(clumpIndex) + ": the library has " +
+                    std::to_string(library.clumps.size()) + " clumps");
+    const LibraryClump& clump = library.clumps[clumpIndex];
+    const uint32_t levels = clump.graph.levelCount;
+
+    // Frames of each level, in order (clips are consecutive per level).
+    std::vector<std::vector<uint32_t>> levelFrames(levels);
+    for (uint32_t f = 0; f < clump.frames; ++f)
+        levelFrames[clump.graph.nodeLevel[f]].push_back(f);
+
+    Context ctx;
+    createContext(ctx, contextOptionsFromArgs(args));
+    std::vector<uint8_t> sheet(size_t(cellW) * columns * cellH * levels * 4, 0);
+    {
+        gpu::GpuInstance one{};
+        one.positionScale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+        one.boundingRadius = clump.mesh.boundingRadius * 1.5f; // room for the swaying
+        one.tint = 0.5f;
+        FieldRenderer renderer =
+            createFieldRenderer(ctx, std::vector<Mesh>{clump.mesh}, std::vector<gpu::GpuInstance>{one}, library.atlas);
+        Offscreen offscreen = createOffscreen(ctx, {cellW, cellH});
+        // Side view: the wind blows across the picture, left to right.
+        glm::vec3 wind = scene.wind.direction;
+        glm::vec3 side = glm::normalize(glm::cross(wind, glm::vec3(0.0f, 1.0f, 0.0f)));
+        Camera camera;
+        camera.target = glm::vec3(0.0f, 0.42f, 0.0f);
+        camera.eye = camera.target + side * 1.7f + glm::vec3(0.0f, 0.2f, 0.0f);
+        camera.fovYDegrees = 38.0f;
+        SkyState sky = skyForTimeOfDay(scene.timeOfDay);
+        for (uint32_t level = 0; level < levels; ++level) {
+            const std::vector<uint32_t>& frames = levelFrames[level];
+            for (uint32_t c = 0; c < columns && !frames.empty(); ++c) {
+                uint32_t frame = frames[size_t(c) * frames.size() / columns];
+                Mesh posed = reconstruct(clump, frame);
+                uploadToBuffer(ctx, renderer.vertices, posed.vertices.data(),
+                               posed.vertices.size() * sizeof(gpu::GpuVertex));
+                renderOffscreenFrame(ctx, renderer, offscreen,
+                                     makeFrameUniforms(camera, float(cellW) / float(cellH), sky, 1, 1, frame));
+                std::vector<uint8_t> pixels = readLdrPixels(ctx, offscreen.targets);
+                for (uint32_t y = 0; y < cellH; ++y)
+                    std::memcpy(&sheet[((size_t(level) * cellH + y) * columns * cellW + size_t(c) * cellW) * 4],
+                                &pixels[size_t(y) * cellW * 4], size_t(cellW) * 4);
+            }
+        }
+        destroyOffscreen(ctx, offscreen);
+        destroyFieldRenderer(ctx, renderer);
+    }
+    int status = validationExitStatus(ctx);
+    destroyContext(ctx);
+    writeRgba8(out, cellW * columns, cellH * levels, sheet);
+    std::fprintf(stderr, "meadow: motion sheet of clump %s (%u levels x %u frames) written to %s\n", clump.name.c_str(),
+                 levels, columns, out.string().c_str());
+    return status;
+}
+
+} // namespace meadow

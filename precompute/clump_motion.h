@@ -1,0 +1,50 @@
+// The motion library of one clump (DESIGN.md sections 2.2–2.4): the clump simulated in every
+// wind level, its vertex motion reduced by PCA, and the wind-indexed motion graph over the frames.
+#pragma once
+
+#include "mesh.h"
+#include "motion/motion_graph.h"
+#include "motion/pca.h"
+#include "plants/plant.h"
+#include "scene.h"
+
+#include <array>
+#include <vector>
+
+namespace meadow {
+
+inline constexpr uint32_t kLodCount = 5;
+
+struct LevelStats {
+    float meanSpeed = 0.0f;               // m/s of the level's wind
+    uint32_t frames = 0;                  // recorded
+    float maxPenetration = 0.0f;          // deepest contact interpenetration while recording (m)
+    double maxKineticEnergy = 0.0;        // J
+    double kineticEnergyFirstHalf = 0.0;  // mean J, first half of the recording
+    double kineticEnergySecondHalf = 0.0; // mean J, second half: bounded means no growth
+    double maxAirDivergence = 0.0;        // of the wind solver (1/s)
+};
+
+struct ClumpMotion {
+    PlantClump clump;                           // rest geometry and rods
+    std::vector<glm::vec3> meanPositions;       // per vertex: the PCA mean (x̄)
+    std::vector<glm::vec3> meanNormals;         // per vertex: skinned normals averaged over all frames
+    PcaResult pca;                              // of the stacked vertex positions, 3 rows per vertex
+    std::vector<MotionClip> clips;              // one per level, in frame order
+    std::array<uint32_t, kLodCount> lodRanks{}; // motion modes per LOD, non-increasing
+    MotionGraph graph;
+    float graphThresholdScale = 1.0f; // the transition threshold's scale that connected the graph
+    std::vector<LevelStats> levels;
+    double simulateSeconds = 0.0, pcaSeconds = 0.0, graphSeconds = 0.0;
+};
+
+// The relative PCA error each LOD allows: LOD0 takes the scene's bound, far LODs far more.
+std::array<float, kLodCount> lodErrorBounds(float lod0MaxError);
+
+// Simulates, reduces and builds the graph for one clump. Deterministic for the same inputs.
+ClumpMotion buildClumpMotion(const PlantClump& clump, const Scene& scene, uint64_t seed);
+
+// The clump at its mean pose as the engine draws it (atlas UVs, mean normals).
+Mesh clumpRenderMesh(const ClumpMotion& motion);
+
+} // namespace meadow

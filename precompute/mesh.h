@@ -1,0 +1,32 @@
+// A mesh as the engine draws it: vertices in the GPU layout (gpu::GpuVertex) and a triangle list,
+// with the bounding sphere the cull pass tests.
+#pragma once
+
+#include "gpu_types.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace meadow {
+
+struct Mesh {
+    std::vector<gpu::GpuVertex> vertices;
+    std::vector<uint32_t> indices;
+    float boundingRadius = 0.0f; // of the sphere centred at half this radius above the base
+
+    // Grows boundingRadius until that sphere contains every vertex.
+    void fitBoundingSphere();
+};
+
+// A small tuft of curved, tapering two-sided blades: a cheap mesh for tests of the draw path.
+// An 8-bit sRGB RGBA image, tightly packed (the plants' texture atlas).
+struct RgbaImage {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+// Deterministic for a given blade count.
+Mesh makeTuftMesh(uint32_t blades = 9, uint32_t segments = 5);
+
+} // namespace meadow

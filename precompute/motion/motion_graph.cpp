@@ -1,0 +1,434 @@
+#include "motion/motion_graph.h"
+
+#include "motion/graph_connectivity.h"
+
+#include "core/error.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace meadow {
+namespace {
+
+struct Candidate {
+    uint32_t from = 0;
+    uint32_t to = 0;
+    float distance = 0.0f;
+};
+
+// A total order, so sorting gives the same sequence whatever order candidates were found in.
+bool candidateBefore(const Candidate& a, const Candidate& b) {
+    if (a.distance != b.distance)
+        return a.distance < b.distance;
+    if (a.from != b.from)
+        return a.from < b.from;
+    return a.to < b.to;
+}
+
+void checkParams(const MotionGraphParams& p) {
+    if (p.window < 2)
+        throw Error("motion graph: window must be at least 2 frames, got " + std::to_string(p.window));
+    if (!(p.frameRate > 0.0f) || !(p.sigmaScale > 0.0f) || !(p.thresholdScale >= 0.0f) || !(p.costTemperature > 0.0f) ||
+        !(p.velocityWeight >= 0.0f) || !(p.urgentQualityFloor > 0.0f && p.urgentQualityFloor <= 1.0f) ||
+        !(p.thresholdPercentile >= 0.0f && p.thresholdPercentile <= 1.0f))
+        throw Error("motion graph: frameRate, sigmaScale and costTemperature must be positive, thresholdScale and "
+                    "velocityWeight non-negative, urgentQualityFloor in (0, 1], thresholdPercentile in [0, 1]");
+    if (p.maxTransitionsPerLevel == 0)
+        throw Error("motion graph: maxTransitionsPerLevel must be at least 1");
+}
+
+// Local minimum of D over (i +- 1, j +- 1), neighbours taken only inside the same clips (across
+// a clip boundary D is not a continuation). Ties go to the first pair in row-major order, so a
+// plateau yields exactly one minimum.
+bool isLocalMinimum(const std::vector<float>& transition, const std::vector<uint32_t>& clipOf, size_t frames, size_t i,
+                    size_t j) {
+    const float value = transition[i * frames + j];
+    for (int di = -1; di <= 1; ++di)
+        for (int dj = -1; dj <= 1; ++dj) {
+            if (di == 0 && dj == 0)
+                continue;
+            const int64_t ni = int64_t(i) + di, nj = int64_t(j) + dj;
+            if (ni < 0 || nj < 0 || ni >= int64_t(frames) || nj >= int64_t(frames))
+                continue;
+            if (clipOf[size_t(ni)] != clipOf[i] || clipOf[size_t(nj)] != clipOf[j])
+                continue;
+            const float neighbour = transition[size_t(ni) * frames + size_t(nj)];
+            const bool earlier = di < 0 || (di == 0 && dj < 0);
+            if (earlier ? neighbour <= value : neighbour < value)
+                return false;
+        }
+    return true;
+}
+
+CsrGraph makeCsr(const std::vector<std::vector<uint32_t>>& adjacency) {
+    CsrGraph graph;
+    graph.start.assign(adjacency.size() + 1, 0);
+    for (size_t i = 0; i < adjacency.size(); ++i)
+        graph.start[i + 1] = graph.start[i] + uint32_t(adjacency[i].size());
+    graph.target.reserve(graph.start.back());
+    for (const auto& edges : adjacency)
+        graph.target.insert(graph.target.end(), edges.begin(), edges.end());
+    return graph;
+}
+
+// Breadth-first search on the reversed graph from every live node of `level`: the fewest steps
+// from each node until a frame of that level plays.
+std::vector<float> stepsToLevel(const MotionGraph& g, uint32_t level) {
+    std::vector<std::vector<uint32_t>> predecessors(g.nodeCount);
+    for (uint32_t i = 0; i < g.nodeCount; ++i)
+        for (uint32_t e = g.edgeStart[i]; e < g.edgeStart[i + 1]; ++e)
+            predecessors[g.edgeTarget[e]].push_back(i);
+    std::vector<float> cost(g.nodeCount, std::numeric_limits<float>::infinity());
+    std::vector<uint32_t> queue;
+    for (uint32_t i = 0; i < g.nodeCount; ++i)
+        if (g.nodeAlive[i] && g.nodeLevel[i] == level) {
+            cost[i] = 0.0f;
+            queue.push_back(i);
+        }
+    for (size_t head = 0; head < queue.size(); ++head) {
+        const uint32_t node = queue[head];
+        for (uint32_t previous : predecessors[node])
+            if (std::isinf(cost[previous])) {
+                cost[previous] = cost[node] + 1.0f;
+                queue.push_back(previous);
+            }
+    }
+    return cost;
+}
+
+} // namespace
+
+MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionClip>& clips,
+                             const MotionGraphParams& params) {
+    checkParams(params);
+    if (q.cols() == 0 || q.rows() == 0)
+        throw Error("motion graph: q is empty (" + std::to_string(q.rows()) + " x " + std::to_string(q.cols()) + ")");
+    if (clips.empty())
+        throw Error("motion graph: no motion clips");
+    if (!q.allFinite())
+        throw Error("motion graph: q holds NaN or infinite coordinates");
+    const size_t frames = size_t(q.cols());
+    const std::vector<uint32_t> clipOf = clipOfFrames(clips, uint32_t(frames));
+
+    MotionGraph g;
+    g.nodeCount = uint32_t(frames);
+    g.blendFrames = params.blendFrames;
+    for (const MotionClip& clip : clips)
+        g.levelCount = std::max(g.levelCount, clip.level + 1);
+    const uint32_t levels = g.levelCount;
+    {
+        std::vector<uint8_t> hasClip(levels, 0);
+        for (const MotionClip& clip : clips)
+            hasClip[clip.level] = 1;
+        for (uint32_t l = 0; l < levels; ++l)
+            if (!hasClip[l])
+                throw Error("motion graph: wind level " + std::to_string(l) + " has no clip");
+    }
+    g.nodeLevel.assign(frames, 0);
+    g.naturalNext.assign(frames, gpu::kMotionNoFrame);
+    for (size_t f = 0; f < frames; ++f) {
+        if (clipOf[f] == kNoClip)
+            continue;
+        const MotionClip& clip = clips[clipOf[f]];
+        g.nodeLevel[f] = uint8_t(clip.level);
+        if (f + 1 < size_t(clip.firstFrame) + clip.frameCount)
+            g.naturalNext[f] = uint32_t(f + 1);
+    }
+
+    // 1. Distances.
+    const Eigen::MatrixXf features = motionFeatures(q, clips, params.frameRate, params.velocityWeight);
+    const std::vector<float> transition =
+        transitionDistances(pairwiseSquaredDistances(features), clips, clipOf, params.window);
+
+    // The level statistic: a low quantile of the intra-level D. Values are gathered per row in
+    // parallel and concatenated in row order; nth_element then depends only on the values.
+    std::vector<std::vector<float>> rowValues(frames);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, frames, 32), [&](const tbb::blocked_range<size_t>& rows) {
+        for (size_t i = rows.begin(); i != rows.end(); ++i) {
+            if (clipOf[i] == kNoClip)
+                continue;
+            for (size_t j = 0; j < frames; ++j) {
+                const float value = transition[i * frames + j];
+                if (std::isfinite(value) && clipOf[j] != kNoClip && g.nodeLevel[j] == g.nodeLevel[i])
+                    rowValues[i].push_back(value);
+            }
+        }
+    });
+    std::vector<double> levelStatistic(levels, 0.0);
+    for (uint32_t l = 0; l < levels; ++l) {
+        std::vector<float> values;
+        for (size_t i = 0; i < frames; ++i)
+            if (g.nodeLevel[i] == l)
+                values.insert(values.end(), rowValues[i].begin(), rowValues[i].end());
+        if (!values.empty()) {
+            const size_t at = std::min(values.size() - 1, size_t(double(values.size()) * params.thresholdPercentile));
+            std::nth_element(values.begin(), values.begin() + ptrdiff_t(at), values.end());
+            levelStatistic[l] = values[at];
+        }
+        if (!(levelStatistic[l] > 0.0))
+            throw Error("motion graph: wind level " + std::to_string(l) +
+                        " has no pair of distinct frames to compare (clips shorter than the window, or motionless)");
+    }
+    rowValues = {};
+    auto threshold = [&](uint32_t a, uint32_t b) {
+        return params.thresholdScale * (a == b ? levelStatistic[a] : std::sqrt(levelStatistic[a] * levelStatistic[b]));
+    };
+
+    // 2. Local minima per row, and the ones below threshold.
+    std::vector<std::vector<Candidate>> minima(frames), chosen(frames);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, frames, 16), [&](const tbb::blocked_range<size_t>& rows) {
+        for (size_t i = rows.begin(); i != rows.end(); ++i) {
+            if (clipOf[i] == kNoClip)
+                continue;
+            for (size_t j = 0; j < frames; ++j)
+                if (std::isfinite(transition[i * frames + j]) && isLocalMinimum(transition, clipOf, frames, i, j))
+                    minima[i].push_back({uint32_t(i), uint32_t(j), transition[i * frames + j]});
+            std::vector<Candidate> good;
+            for (const Candidate& c : minima[i])
+                if (c.distance <= threshold(g.nodeLevel[i], g.nodeLevel[c.to]))
+                    good.push_back(c);
+            std::sort(good.begin(), good.end(), candidateBefore);
+            std::vector<uint32_t> perLevel(levels, 0);
+            for (const Candidate& c : good)
+                if (perLevel[g.nodeLevel[c.to]]++ < params.maxTransitionsPerLevel)
+                    chosen[i].push_back(c);
+        }
+    });
+    auto countTo = [&](size_t i, uint32_t level) {
+        uint32_t n = 0;
+        for (const Candidate& c : chosen[i])
+            n += g.nodeLevel[c.to] == level;
+        return n;
+    };
+    auto alreadyChosen = [&](const Candidate& candidate) {
+        for (const Candidate& c : chosen[candidate.from])
+            if (c.to == candidate.to)
+                return true;
+        return false;
+    };
+
+    // 3. Adjacent levels must be joined both ways.
+    for (uint32_t a = 0; a < levels; ++a)
+        for (uint32_t b : {a - 1, a + 1}) {
+            if (b >= levels) // a - 1 wraps for a = 0
+                continue;
+            uint32_t have = 0;
+            std::vector<Candidate> pool;
+            for (size_t i = 0; i < frames; ++i) {
+                if (clipOf[i] == kNoClip || g.nodeLevel[i] != a)
+                    continue;
+                have += countTo(i, b);
+                for (const Candidate& c : minima[i])
+                    if (g.nodeLevel[c.to] == b && clipOf[c.to] != kNoClip)
+                        pool.push_back(c);
+            }
+            if (have >= params.minCrossLevelTransitions)
+                continue;
+            g.crossLevelFallbackPairs.push_back(a);
+            g.crossLevelFallbackPairs.push_back(b);
+            std::sort(pool.begin(), pool.end(), candidateBefore);
+            for (const Candidate& c : pool) {
+                if (have >= params.minCrossLevelTransitions)
+                    break;
+                if (countTo(c.from, b) >= params.maxTransitionsPerLevel || alreadyChosen(c))
+                    continue;
+                chosen[c.from].push_back(c);
+                ++have;
+            }
+        }
+
+    // 4. Every clip's last frame needs a way on within its level.
+    for (const MotionClip& clip : clips) {
+        const size_t last = size_t(clip.firstFrame) + clip.frameCount - 1;
+        if (countTo(last, clip.level) > 0)
+            continue;
+        Candidate best{uint32_t(last), 0, std::numeric_limits<float>::infinity()};
+        for (size_t j = 0; j < frames; ++j) {
+            const float value = transition[last * frames + j];
+            if (clipOf[j] != kNoClip && g.nodeLevel[j] == clip.level && value < best.distance)
+                best = {uint32_t(last), uint32_t(j), value};
+        }
+        if (!std::isfinite(best.distance))
+            throw Error("motion graph: the clip ending at frame " + std::to_string(last) + " (wind level " +
+                        std::to_string(clip.level) + ") has no frame of its level to continue with");
+        chosen[last].push_back(best);
+        ++g.forcedClipEndTransitions;
+    }
+
+    // 5. Prune to strongly connected components, the whole graph and each level, to a fixed point.
+    std::vector<std::vector<uint32_t>> adjacency(frames), levelAdjacency(frames);
+    for (size_t i = 0; i < frames; ++i) {
+        if (clipOf[i] == kNoClip)
+            continue;
+        if (g.naturalNext[i] != gpu::kMotionNoFrame)
+            adjacency[i].push_back(g.naturalNext[i]);
+        std::sort(chosen[i].begin(), chosen[i].end(),
+                  [](const Candidate& a, const Candidate& b) { return a.to < b.to; });
+        for (const Candidate& c : chosen[i])
+            adjacency[i].push_back(c.to);
+        for (uint32_t j : adjacency[i])
+            if (g.nodeLevel[j] == g.nodeLevel[i])
+                levelAdjacency[i].push_back(j);
+    }
+    const CsrGraph whole = makeCsr(adjacency), byLevel = makeCsr(levelAdjacency);
+    std::vector<uint8_t> keep(frames, 0);
+    for (size_t i = 0; i < frames; ++i)
+        keep[i] = clipOf[i] != kNoClip;
+    for (;;) {
+        uint32_t dropped = keepLargestComponent(whole, keep);
+        for (uint32_t l = 0; l < levels; ++l) {
+            std::vector<uint8_t> keepLevel(frames, 0);
+            for (size_t i = 0; i < frames; ++i)
+                keepLevel[i] = keep[i] && g.nodeLevel[i] == l;
+            dropped += keepLargestComponent(byLevel, keepLevel);
+            for (size_t i = 0; i < frames; ++i)
+                if (g.nodeLevel[i] == l)
+                    keep[i] = keep[i] && keepLevel[i];
+        }
+        if (dropped == 0)
+            break;
+    }
+    g.nodeAlive = keep;
+    for (size_t i = 0; i < frames; ++i)
+        g.removedNodes += clipOf[i] != kNoClip && !keep[i];
+    for (uint32_t l = 0; l < levels; ++l) {
+        bool any = false;
+        for (size_t i = 0; i < frames; ++i)
+            any = any || (keep[i] && g.nodeLevel[i] == l);
+        if (!any)
+            throw Error("motion graph: pruning to strongly connected components left wind level " + std::to_string(l) +
+                        " without frames (too few transitions: raise thresholdScale or simulate longer)");
+    }
+
+    // The final CSR: live nodes, edges between live nodes, natural edge first.
+    g.edgeStart.assign(frames + 1, 0);
+    for (size_t i = 0; i < frames; ++i) {
+        if (keep[i]) {
+            for (uint32_t j : adjacency[i]) {
+                if (!keep[j])
+                    continue;
+                const bool natural = j == g.naturalNext[i];
+                float distance = 0.0f;
+                if (!natural)
+                    for (const Candidate& c : chosen[i])
+                        if (c.to == j)
+                            distance = c.distance;
+                g.edgeTarget.push_back(j);
+                g.edgeIsTransition.push_back(natural ? 0 : 1);
+                g.edgeDistance.push_back(distance);
+                g.transitionCount += natural ? 0 : 1;
+                g.crossLevelTransitionCount += g.nodeLevel[j] != g.nodeLevel[i];
+            }
+        }
+        g.edgeStart[i + 1] = uint32_t(g.edgeTarget.size());
+    }
+    g.edgeCount = uint32_t(g.edgeTarget.size());
+
+    // 6. Probabilities (Schödl et al. 2000, eq. 2), future costs and the integer weights.
+    std::vector<double> quality(g.edgeCount, 0.0);
+    g.edgeProbability.assign(g.edgeCount, 0.0f);
+    for (size_t i = 0; i < frames; ++i) {
+        const uint32_t begin = g.edgeStart[i], end = g.edgeStart[i + 1];
+        if (begin == end)
+            continue;
+        const double sigma = params.sigmaScale * levelStatistic[g.nodeLevel[i]];
+        double best = std::numeric_limits<double>::infinity();
+        for (uint32_t e = begin; e < end; ++e)
+            best = std::min(best, double(g.edgeDistance[e]));
+        double sum = 0.0;
+        for (uint32_t e = begin; e < end; ++e) {
+            // Relative to the node's best edge, so exp cannot underflow for all of them at once.
+            quality[e] = std::exp(-(double(g.edgeDistance[e]) - best) / sigma);
+            sum += quality[e];
+        }
+        for (uint32_t e = begin; e < end; ++e)
+            g.edgeProbability[e] = float(quality[e] / sum);
+    }
+    g.futureCost.resize(size_t(levels) * frames);
+    for (uint32_t l = 0; l < levels; ++l) {
+        const std::vector<float> cost = stepsToLevel(g, l);
+        std::copy(cost.begin(), cost.end(), g.futureCost.begin() + ptrdiff_t(size_t(l) * frames));
+    }
+    g.edgeWeight.assign(size_t(levels) * g.edgeCount, 0);
+    std::vector<double> raw;
+    for (uint32_t l = 0; l < levels; ++l) {
+        const float* cost = g.futureCost.data() + size_t(l) * frames;
+        for (size_t i = 0; i < frames; ++i) {
+            const uint32_t begin = g.edgeStart[i], end = g.edgeStart[i + 1];
+            if (begin == end)
+                continue;
+            const bool urgent = cost[i] > 0.0f;
+            double bestCost = std::numeric_limits<double>::infinity();
+            for (uint32_t e = begin; e < end; ++e)
+                bestCost = std::min(bestCost, 1.0 + double(cost[g.edgeTarget[e]]));
+            raw.assign(end - begin, 0.0);
+            double maxRaw = 0.0;
+            for (uint32_t e = begin; e < end; ++e) {
+                const double q = urgent ? std::max(quality[e], double(params.urgentQualityFloor)) : quality[e];
+                const double extra = 1.0 + double(cost[g.edgeTarget[e]]) - bestCost;
+                raw[e - begin] = q * std::exp(-extra / params.costTemperature);
+                maxRaw = std::max(maxRaw, raw[e - begin]);
+            }
+            for (uint32_t e = begin; e < end; ++e)
+                g.edgeWeight[size_t(l) * g.edgeCount + e] = uint32_t(std::lround(65535.0 * raw[e - begin] / maxRaw));
+        }
+    }
+
+    // Connectivity as recorded facts (pruning guarantees them; tests check them independently).
+    {
+        CsrGraph live{g.edgeStart, g.edgeTarget};
+        std::vector<uint8_t> check = keep;
+        g.stronglyConnected = keepLargestComponent(live, check) == 0;
+        std::vector<std::vector<uint32_t>> intra(frames);
+        for (size_t i = 0; i < frames; ++i)
+            for (uint32_t e = g.edgeStart[i]; e < g.edgeStart[i + 1]; ++e)
+                if (g.nodeLevel[g.edgeTarget[e]] == g.nodeLevel[i])
+                    intra[i].push_back(g.edgeTarget[e]);
+        const CsrGraph intraGraph = makeCsr(intra);
+        g.levelStronglyConnected.assign(levels, 0);
+        for (uint32_t l = 0; l < levels; ++l) {
+            std::vector<uint8_t> keepLevel(frames, 0);
+            for (size_t i = 0; i < frames; ++i)
+                keepLevel[i] = keep[i] && g.nodeLevel[i] == l;
+            g.levelStronglyConnected[l] = keepLargestComponent(intraGraph, keepLevel) == 0;
+        }
+    }
+    return g;
+}
+
+gpu::MotionTables makeMotionTables(const MotionGraph& graph) {
+    gpu::MotionTables tables;
+    tables.edgeStart = graph.edgeStart;
+    tables.edgeTarget = graph.edgeTarget;
+    tables.edgeWeight = graph.edgeWeight;
+    tables.naturalNext = graph.naturalNext;
+    tables.edgeCount = graph.edgeCount;
+    tables.levelCount = graph.levelCount;
+    tables.blendFrames = graph.blendFrames;
+    return tables;
+}
+
+gpu::GpuMotionState initialMotionState(const MotionGraph& graph, uint32_t instanceSeed, uint32_t level) {
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < graph.nodeCount; ++i)
+        count += graph.nodeAlive[i] && (level == kAnyLevel || graph.nodeLevel[i] == level);
+    if (count == 0)
+        throw Error("motion graph: no live frame of wind level " + std::to_string(level) + " to start from");
+    // Counter 0xffffffff: a stream position the walk itself reaches only after 2^32 - 1 steps.
+    uint32_t pick = gpu::motionRandom(instanceSeed, 0xffffffffu) % count;
+    gpu::GpuMotionState state{};
+    for (uint32_t i = 0; i < graph.nodeCount; ++i)
+        if (graph.nodeAlive[i] && (level == kAnyLevel || graph.nodeLevel[i] == level) && pick-- == 0) {
+            state.frame = i;
+            break;
+        }
+    state.blendFrom = state.frame;
+    return state;
+}
+
+} // namespace meadow
