@@ -15,8 +15,9 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The most modes PCA keeps; LOD0's rank is the smallest within the scene's error bound.
-constexpr uint32_t kMaxMotionModes = 96;
+// The most modes PCA keeps per rod. A rod's motion lives in the span of its ~10 nodes' positions
+// and frames; 1 % error of a clump takes ~10–20 modes for the busiest rods.
+constexpr uint32_t kMaxModesPerRod = 48;
 
 } // namespace
 
@@ -78,8 +79,11 @@ ClumpMotion buildClumpMotion(const PlantClump& clump, const Scene& scene, uint64
     }
     if (!samples.allFinite())
         throw Error("clump " + clump.name + ": skinning produced non-finite vertex positions");
-    out.pca = computePca(samples, std::min<uint32_t>(kMaxMotionModes, totalFrames));
-    if (out.pca.basis.cols() == 0)
+    std::vector<uint32_t> vertexRod(vertexCount);
+    for (size_t v = 0; v < vertexCount; ++v)
+        vertexRod[v] = clump.mesh.skin[v].rod;
+    out.pca = computeBlockPca(samples, vertexRod, uint32_t(clump.rods.size()), kMaxModesPerRod);
+    if (out.pca.modeOrder.empty())
         throw Error("clump " + clump.name + ": the simulation recorded no motion to reduce");
     out.meanPositions.resize(vertexCount);
     out.meanNormals.resize(vertexCount);
@@ -90,23 +94,27 @@ ClumpMotion buildClumpMotion(const PlantClump& clump, const Scene& scene, uint64
         out.meanNormals[v] = glm::length(n) > 1e-12 ? glm::vec3(glm::normalize(n)) : clump.mesh.normals[v];
     }
     std::array<float, kLodCount> bounds = lodErrorBounds(scene.motion.lod0MaxError);
+    std::array<uint32_t, kLodCount> lodModes{};
     for (uint32_t lod = 0; lod < kLodCount; ++lod)
-        out.lodRanks[lod] = std::max<uint32_t>(1, rankForRelativeError(out.pca, bounds[lod]));
-    // The bound is a target, not a guarantee: turbulent motion of many independent blades can
-    // need more modes than the library keeps. Say so; inspect reports the error per rank.
-    if (out.pca.relativeErrorPerRank[out.lodRanks[0]] > bounds[0])
+        lodModes[lod] = std::max<uint32_t>(1, modesForRelativeError(out.pca, bounds[lod]));
+    out.basis = makeMotionBasis(out.pca, lodModes);
+    // The bound is a target, not a guarantee: the library keeps at most kMaxModesPerRod per rod.
+    // Say so; inspect reports the error per mode count.
+    if (out.pca.relativeErrorPerMode[lodModes[0]] > bounds[0])
         std::fprintf(stderr,
                      "meadow: warning: clump %s: %u motion modes leave %.2f%% error, above the scene's "
                      "motion.lod0MaxError of %.2f%%\n",
-                     clump.name.c_str(), out.lodRanks[0], out.pca.relativeErrorPerRank[out.lodRanks[0]] * 100.0,
+                     clump.name.c_str(), lodModes[0], out.pca.relativeErrorPerMode[lodModes[0]] * 100.0,
                      double(bounds[0]) * 100.0);
     out.pcaSeconds = secondsSince(start);
 
-    // The graph works on LOD0's reduced coordinates.
+    // The graph works on LOD0's reduced coordinates: the blocks are orthonormal, so distances
+    // between coordinate vectors are distances between the reconstructed frames.
     start = std::chrono::steady_clock::now();
     MotionGraphParams graphParams;
     graphParams.frameRate = scene.motion.frameRate;
-    Eigen::MatrixXf q = out.pca.coords.topRows(Eigen::Index(out.lodRanks[0]));
+    const Eigen::MatrixXf q = Eigen::Map<const Eigen::MatrixXf>(
+        out.basis.coords.data(), Eigen::Index(out.basis.modesPerFrame()), Eigen::Index(out.basis.frames));
     // Short or slowly drifting clips may offer too few transitions below the threshold to keep
     // every level strongly connected; loosen the threshold step by step before giving up.
     for (int attempt = 0;; ++attempt) {

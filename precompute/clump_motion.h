@@ -3,8 +3,8 @@
 #pragma once
 
 #include "mesh.h"
+#include "motion/block_pca.h"
 #include "motion/motion_graph.h"
-#include "motion/pca.h"
 #include "plants/plant.h"
 #include "scene.h"
 
@@ -12,8 +12,6 @@
 #include <vector>
 
 namespace meadow {
-
-inline constexpr uint32_t kLodCount = 5;
 
 struct LevelStats {
     float meanSpeed = 0.0f;               // m/s of the level's wind
@@ -26,12 +24,12 @@ struct LevelStats {
 };
 
 struct ClumpMotion {
-    PlantClump clump;                           // rest geometry and rods
-    std::vector<glm::vec3> meanPositions;       // per vertex: the PCA mean (x̄)
-    std::vector<glm::vec3> meanNormals;         // per vertex: skinned normals averaged over all frames
-    PcaResult pca;                              // of the stacked vertex positions, 3 rows per vertex
-    std::vector<MotionClip> clips;              // one per level, in frame order
-    std::array<uint32_t, kLodCount> lodRanks{}; // motion modes per LOD, non-increasing
+    PlantClump clump;                     // rest geometry and rods
+    std::vector<glm::vec3> meanPositions; // per vertex: the PCA mean (x̄)
+    std::vector<glm::vec3> meanNormals;   // per vertex: skinned normals averaged over all frames
+    BlockPcaResult pca;                   // of the stacked vertex positions, one block per rod
+    MotionBasis basis;                    // what the library stores: per-LOD modes, rows, coordinates
+    std::vector<MotionClip> clips;        // one per level, in frame order
     MotionGraph graph;
     float graphThresholdScale = 1.0f; // the transition threshold's scale that connected the graph
     std::vector<LevelStats> levels;

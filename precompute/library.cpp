@@ -18,7 +18,7 @@ namespace meadow {
 namespace {
 
 // Bump when what precompute produces changes for the same inputs.
-constexpr uint32_t kPrecomputeVersion = 2;
+constexpr uint32_t kPrecomputeVersion = 3;
 
 std::string hex(uint64_t v) {
     char buf[17];
@@ -44,18 +44,20 @@ void writeClump(ByteWriter& w, const ClumpMotion& m) {
     w.u32s(mesh.indices);
     w.f32(mesh.boundingRadius);
 
-    const uint32_t frames = uint32_t(m.pca.coords.cols());
-    const uint32_t rank = m.lodRanks[0];
-    w.u32(frames);
-    w.u32(rank);
-    for (uint32_t r : m.lodRanks)
-        w.u32(r);
-    Eigen::MatrixXf basis = m.pca.basis.leftCols(Eigen::Index(rank));
-    w.f32s(std::vector<float>(basis.data(), basis.data() + basis.size()));
-    Eigen::MatrixXf coords = m.pca.coords.topRows(Eigen::Index(rank));
-    w.f32s(std::vector<float>(coords.data(), coords.data() + coords.size()));
-    std::vector<float> errors(m.pca.relativeErrorPerRank.begin(), m.pca.relativeErrorPerRank.end());
-    w.f32s(errors);
+    const MotionBasis& b = m.basis;
+    w.u32(b.frames);
+    for (uint32_t modes : b.lodModes)
+        w.u32(modes);
+    w.u32s(b.vertexBlock);
+    w.u32(uint32_t(b.blocks.size()));
+    for (const MotionBlock& block : b.blocks) {
+        w.u32(block.coordOffset);
+        for (uint32_t rank : block.ranks)
+            w.u32(rank);
+    }
+    w.f32s(b.basis);
+    w.f32s(b.coords);
+    w.f32s(std::vector<float>(b.relativeErrorPerMode.begin(), b.relativeErrorPerMode.end()));
 
     const MotionGraph& g = m.graph;
     w.u32(g.nodeCount);
@@ -115,16 +117,28 @@ LibraryClump readClump(ByteReader& r, const std::string& where) {
         if (!std::isfinite(f))
             throw fail("clump " + c.name + ": a vertex holds a non-finite value");
 
-    c.frames = r.u32();
-    c.motionRank = r.u32();
-    for (uint32_t& rank : c.lodRanks)
-        rank = r.u32();
-    c.basis = r.f32s();
-    c.coords = r.f32s();
-    c.pcaRelativeError = r.f32s();
-    if (c.basis.size() != vertices * 3 * c.motionRank || c.coords.size() != size_t(c.motionRank) * c.frames ||
-        c.lodRanks[0] != c.motionRank)
-        throw fail("clump " + c.name + ": motion basis or coordinates have the wrong size");
+    MotionBasis& b = c.motion;
+    b.frames = r.u32();
+    for (uint32_t& modes : b.lodModes)
+        modes = r.u32();
+    b.vertexBlock = r.u32s();
+    const uint32_t blockCount = r.u32();
+    if (blockCount > r.remaining() / (4 * (1 + kLodCount)))
+        throw fail("clump " + c.name + ": motion block count " + std::to_string(blockCount) + " exceeds the section");
+    b.blocks.resize(blockCount);
+    for (MotionBlock& block : b.blocks) {
+        block.coordOffset = r.u32();
+        for (uint32_t& rank : block.ranks)
+            rank = r.u32();
+    }
+    b.basis = r.f32s();
+    b.coords = r.f32s();
+    std::vector<float> errors = r.f32s();
+    b.relativeErrorPerMode.assign(errors.begin(), errors.end());
+    if (b.vertexBlock.size() != vertices)
+        throw fail("clump " + c.name + ": motion blocks for " + std::to_string(b.vertexBlock.size()) +
+                   " vertices, mesh has " + std::to_string(vertices));
+    b.finish(where + ": clump " + c.name);
 
     MotionGraph& g = c.graph;
     g.nodeCount = r.u32();
@@ -146,7 +160,7 @@ LibraryClump readClump(ByteReader& r, const std::string& where) {
     g.transitionCount = r.u32();
     g.crossLevelTransitionCount = r.u32();
     const size_t n = g.nodeCount, e = g.edgeCount, l = g.levelCount;
-    if (n != c.frames || g.nodeLevel.size() != n || g.nodeAlive.size() != n || g.naturalNext.size() != n ||
+    if (n != c.motion.frames || g.nodeLevel.size() != n || g.nodeAlive.size() != n || g.naturalNext.size() != n ||
         g.edgeStart.size() != n + 1 || g.edgeTarget.size() != e || g.edgeIsTransition.size() != e ||
         g.edgeProbability.size() != e || g.edgeWeight.size() != l * e || g.futureCost.size() != l * n ||
         g.levelStronglyConnected.size() != l || g.edgeStart.back() != e)
@@ -275,9 +289,9 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     for (const ClumpMotion& m : motions) {
         say("clump %s: %zu vertices, %zu triangles, %u frames, LOD0 %u modes (%.2f%% error), graph %u nodes %u edges, "
             "max penetration %.1f mm (simulate %.1f s, PCA %.1f s, graph %.1f s)",
-            m.clump.name.c_str(), m.clump.mesh.positions.size(), m.clump.mesh.indices.size() / 3,
-            uint32_t(m.pca.coords.cols()), m.lodRanks[0], m.pca.relativeErrorPerRank[m.lodRanks[0]] * 100.0,
-            m.graph.nodeCount, m.graph.edgeCount,
+            m.clump.name.c_str(), m.clump.mesh.positions.size(), m.clump.mesh.indices.size() / 3, m.basis.frames,
+            m.basis.lodModes[0], m.basis.relativeErrorPerMode[m.basis.lodModes[0]] * 100.0, m.graph.nodeCount,
+            m.graph.edgeCount,
             double(std::max_element(m.levels.begin(), m.levels.end(),
                                     [](auto& a, auto& b) { return a.maxPenetration < b.maxPenetration; })
                        ->maxPenetration *

@@ -23,13 +23,8 @@ namespace meadow {
 struct LibraryClump {
     std::string name;
     uint32_t plants = 0;
-    Mesh mesh;               // the mean pose, atlas UVs
-    uint32_t frames = 0;     // motion frames, all levels
-    uint32_t motionRank = 0; // basis columns stored (= LOD0's modes)
-    std::array<uint32_t, kLodCount> lodRanks{};
-    std::vector<float> basis;            // 3 * vertices x motionRank, column-major (x̄ + U q)
-    std::vector<float> coords;           // motionRank x frames, column-major (q of each frame)
-    std::vector<float> pcaRelativeError; // per rank from 0
+    Mesh mesh;          // the mean pose, atlas UVs
+    MotionBasis motion; // x̄ + U q per rod block; frames over all levels
     MotionGraph graph;
     std::vector<LevelStats> levels;
 };

@@ -82,7 +82,7 @@ int runInspect(const Args& argv) {
         // Levels of detail by simplification are later work: LOD0, the full mesh, is all there is.
         clump["lods"] = {{{"vertices", c.mesh.vertices.size()},
                           {"triangles", c.mesh.indices.size() / 3},
-                          {"motionModes", c.lodRanks[0]}}};
+                          {"motionModes", c.motion.lodModes[0]}}};
         const MotionGraph& g = c.graph;
         uint32_t levelsConnected = 0;
         for (uint8_t connected : g.levelStronglyConnected)
@@ -96,10 +96,15 @@ int runInspect(const Args& argv) {
                               {"kineticEnergyFirstHalf", s.kineticEnergyFirstHalf},
                               {"kineticEnergySecondHalf", s.kineticEnergySecondHalf},
                               {"maxAirDivergence", s.maxAirDivergence}});
-        clump["motion"] = {{"frames", c.frames},
+        std::array<uint32_t, kLodCount> maxModesPerVertex{};
+        for (uint32_t lod = 0; lod < kLodCount; ++lod)
+            maxModesPerVertex[lod] = c.motion.maxBlockRank(lod);
+        clump["motion"] = {{"frames", c.motion.frames},
                            {"windLevels", g.levelCount},
-                           {"pcaRelError", c.pcaRelativeError},
-                           {"motionModesPerLod", c.lodRanks},
+                           {"pcaRelError", c.motion.relativeErrorPerMode},
+                           {"motionModesPerLod", c.motion.lodModes},
+                           {"motionBlocks", c.motion.blocks.size()},
+                           {"maxModesPerVertexPerLod", maxModesPerVertex},
                            {"graph",
                             {{"nodes", g.nodeCount - g.removedNodes},
                              {"edges", g.edgeCount},

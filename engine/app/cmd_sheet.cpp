@@ -32,16 +32,9 @@ options:
 Mesh reconstruct(const LibraryClump& clump, uint32_t frame) {
     Mesh mesh = clump.mesh;
     const size_t vertices = mesh.vertices.size();
-    const float* q = &clump.coords[size_t(frame) * clump.motionRank];
     std::vector<glm::vec3> p(vertices);
-    for (size_t v = 0; v < vertices; ++v) {
-        glm::vec3 x = glm::vec3(mesh.vertices[v].positionU);
-        for (uint32_t k = 0; k < clump.motionRank; ++k) {
-            const float* column = &clump.basis[size_t(k) * vertices * 3];
-            x += q[k] * glm::vec3(column[3 * v], column[3 * v + 1], column[3 * v + 2]);
-        }
-        p[v] = x;
-    }
+    for (size_t v = 0; v < vertices; ++v)
+        p[v] = glm::vec3(mesh.vertices[v].positionU) + clump.motion.displacement(uint32_t(v), frame);
     std::vector<glm::vec3> n(vertices, glm::vec3(0.0f));
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
@@ -89,7 +82,7 @@ int runSheet(const Args& argv) {
 
     // Frames of each level, in order (clips are consecutive per level).
     std::vector<std::vector<uint32_t>> levelFrames(levels);
-    for (uint32_t f = 0; f < clump.frames; ++f)
+    for (uint32_t f = 0; f < clump.motion.frames; ++f)
         levelFrames[clump.graph.nodeLevel[f]].push_back(f);
 
     Context ctx;

@@ -47,7 +47,7 @@ TEST(LibraryFile, GoldenBytesPinTheFormat) {
     writeLibraryFile(p, lib);
     std::vector<uint8_t> bytes = readAll(p);
     ASSERT_EQ(bytes.size(), 32u + 32u + 2u);
-    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 2, 0, 0, 0, 1, 0, 0, 0};
+    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 3, 0, 0, 0, 1, 0, 0, 0};
     EXPECT_EQ(std::vector<uint8_t>(bytes.begin(), bytes.begin() + 16), std::vector<uint8_t>(header, header + 16));
     EXPECT_EQ(bytes[16], 0x08); // inputHash, little-endian
     EXPECT_EQ(bytes[23], 0x01);
@@ -139,8 +139,11 @@ TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
         EXPECT_LE(glm::length(glm::vec3(v.positionU) - glm::vec3(0, clump.mesh.boundingRadius * 0.5f, 0)),
                   clump.mesh.boundingRadius * (1.0f + 1e-6f));
     // Motion: both levels recorded, reduced within the scene's bound, a connected graph.
-    EXPECT_EQ(clump.frames, 2u * 45u);
-    EXPECT_LE(clump.pcaRelativeError[clump.motionRank], 0.05f + 1e-6f);
+    EXPECT_EQ(clump.motion.frames, 2u * 45u);
+    EXPECT_LE(clump.motion.relativeErrorPerMode[clump.motion.lodModes[0]], 0.05 + 1e-6);
+    // One motion block per rod: a vertex pays for its own rod's modes, far fewer than the clump's.
+    EXPECT_GT(clump.motion.blocks.size(), 1u);
+    EXPECT_LT(clump.motion.maxBlockRank(0), clump.motion.lodModes[0]);
     EXPECT_TRUE(clump.graph.stronglyConnected);
     EXPECT_GT(lib.atlas.width, 0u);
 }
