@@ -56,4 +56,29 @@ void Mesh::fitBoundingSphere() {
     boundingRadius = r;
 }
 
+Mesh meshAtFrame(const Mesh& meanPose, const MotionBasis& motion, uint32_t frame, uint32_t lod) {
+    Mesh mesh = meanPose;
+    const size_t vertices = mesh.vertices.size();
+    std::vector<glm::vec3> p(vertices);
+    for (size_t v = 0; v < vertices; ++v)
+        p[v] = glm::vec3(mesh.vertices[v].positionU) + motion.displacement(uint32_t(v), frame, lod);
+    std::vector<glm::vec3> n(vertices, glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        glm::vec3 face = glm::cross(p[b] - p[a], p[c] - p[a]);
+        n[a] += face;
+        n[b] += face;
+        n[c] += face;
+    }
+    for (size_t v = 0; v < vertices; ++v) {
+        glm::vec3 mean = glm::vec3(mesh.vertices[v].normalV);
+        glm::vec3 normal = glm::length(n[v]) > 1e-12f ? glm::normalize(n[v]) : mean;
+        if (glm::dot(normal, mean) < 0.0f)
+            normal = -normal;
+        mesh.vertices[v].positionU = glm::vec4(p[v], mesh.vertices[v].positionU.w);
+        mesh.vertices[v].normalV = glm::vec4(normal, mesh.vertices[v].normalV.w);
+    }
+    return mesh;
+}
+
 } // namespace meadow

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gpu_types.h"
+#include "motion/motion_basis.h"
 
 #include <cstdint>
 #include <vector>
@@ -18,7 +19,10 @@ struct Mesh {
     void fitBoundingSphere();
 };
 
-// A small tuft of curved, tapering two-sided blades: a cheap mesh for tests of the draw path.
+// The mesh at motion frame `frame`: the mean pose plus the LOD's reconstructed displacement
+// (x̄ + U q), with normals from the deformed triangles, oriented like the mean pose's.
+Mesh meshAtFrame(const Mesh& meanPose, const MotionBasis& motion, uint32_t frame, uint32_t lod = 0);
+
 // An 8-bit sRGB RGBA image, tightly packed (the plants' texture atlas).
 struct RgbaImage {
     uint32_t width = 0;
@@ -26,6 +30,7 @@ struct RgbaImage {
     std::vector<uint8_t> rgba;
 };
 
+// A small tuft of curved, tapering two-sided blades: a cheap mesh for tests of the draw path.
 // Deterministic for a given blade count.
 Mesh makeTuftMesh(uint32_t blades = 9, uint32_t segments = 5);
 

@@ -27,33 +27,6 @@ options:
   --preset, --seed, --device, --validation, --verbose   as for meadow render
 )";
 
-// The clump's vertices at motion frame `frame`: x̄ + U q, with normals from the deformed
-// triangles, oriented like the mean pose's.
-Mesh reconstruct(const LibraryClump& clump, uint32_t frame) {
-    Mesh mesh = clump.mesh;
-    const size_t vertices = mesh.vertices.size();
-    std::vector<glm::vec3> p(vertices);
-    for (size_t v = 0; v < vertices; ++v)
-        p[v] = glm::vec3(mesh.vertices[v].positionU) + clump.motion.displacement(uint32_t(v), frame);
-    std::vector<glm::vec3> n(vertices, glm::vec3(0.0f));
-    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-        uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
-        glm::vec3 face = glm::cross(p[b] - p[a], p[c] - p[a]);
-        n[a] += face;
-        n[b] += face;
-        n[c] += face;
-    }
-    for (size_t v = 0; v < vertices; ++v) {
-        glm::vec3 mean = glm::vec3(mesh.vertices[v].normalV);
-        glm::vec3 normal = glm::length(n[v]) > 1e-12f ? glm::normalize(n[v]) : mean;
-        if (glm::dot(normal, mean) < 0.0f)
-            normal = -normal;
-        mesh.vertices[v].positionU = glm::vec4(p[v], mesh.vertices[v].positionU.w);
-        mesh.vertices[v].normalV = glm::vec4(normal, mesh.vertices[v].normalV.w);
-    }
-    return mesh;
-}
-
 } // namespace
 
 int runSheet(const Args& argv) {
@@ -108,7 +81,7 @@ int runSheet(const Args& argv) {
             const std::vector<uint32_t>& frames = levelFrames[level];
             for (uint32_t c = 0; c < columns && !frames.empty(); ++c) {
                 uint32_t frame = frames[size_t(c) * frames.size() / columns];
-                Mesh posed = reconstruct(clump, frame);
+                Mesh posed = meshAtFrame(clump.mesh, clump.motion, frame);
                 uploadToBuffer(ctx, renderer.vertices, posed.vertices.data(),
                                posed.vertices.size() * sizeof(gpu::GpuVertex));
                 renderOffscreenFrame(ctx, renderer, offscreen,
