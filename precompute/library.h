@@ -6,6 +6,8 @@
 //          its motion graph and the statistics of its simulation
 //   "ATLS" the plants' texture atlas: u32 width, u32 height, 8-bit sRGB RGBA texels
 //   "TFLD" the field: u32 count, then per instance gpu::GpuInstance (4 + 4 words)
+//   "SKYD" the day of sky: SH order, backdrop size, source (0 analytic, 1 panoramas), then per
+//          frame its time, sun direction, radiance and irradiance, SH and backdrop image
 #pragma once
 
 #include "clump_motion.h"
@@ -34,6 +36,8 @@ struct Library {
     std::vector<LibraryClump> clumps;
     RgbaImage atlas;
     std::vector<gpu::GpuInstance> field;
+    sky::SkyDay sky;
+    bool skyFromMaps = false; // a user's panoramas rather than the analytic sky
     uint32_t formatVersion = 0;
     uint64_t inputHash = 0;
     uint64_t fileBytes = 0;

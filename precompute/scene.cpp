@@ -86,9 +86,9 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     } catch (const json::parse_error& e) {
         throw Error("scene " + path.string() + ": invalid JSON: " + e.what());
     }
-    check.onlyKeys(
-        doc, "",
-        {"name", "description", "seed", "presets", "testField", "camera", "timeOfDay", "plants", "wind", "motion"});
+    check.onlyKeys(doc, "",
+                   {"name", "description", "seed", "presets", "testField", "camera", "timeOfDay", "plants", "wind",
+                    "motion", "sky"});
 
     // Merge the preset's overrides over the base description.
     json resolved = doc;
@@ -203,6 +203,38 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
         m.settleSeconds = check.number(motion.value("settleSeconds", json(2.0)), "motion.settleSeconds", 0.0f, 60.0f);
         m.recordSeconds = check.number(motion.value("recordSeconds", json(20.0)), "motion.recordSeconds", 0.5f, 300.0f);
         m.lod0MaxError = check.number(motion.value("lod0MaxError", json(0.01)), "motion.lod0MaxError", 1e-4f, 0.5f);
+    }
+
+    scene.sky.params = sky::skyParamsForPreset(preset);
+    if (resolved.contains("sky")) {
+        const json& skyJson = resolved["sky"];
+        check.onlyKeys(
+            skyJson, "sky",
+            {"latitude", "dayOfYear", "turbidity", "groundAlbedo", "nightLuminance", "frames", "imageWidth", "maps"});
+        sky::SkyParams& p = scene.sky.params;
+        p.latitudeDegrees = check.number(skyJson.value("latitude", json(p.latitudeDegrees)), "sky.latitude", -90, 90);
+        p.dayOfYear = check.number(skyJson.value("dayOfYear", json(p.dayOfYear)), "sky.dayOfYear", 1, 366);
+        p.daylight.turbidity =
+            check.number(skyJson.value("turbidity", json(p.daylight.turbidity)), "sky.turbidity", 1.7f, 10.0f);
+        p.daylight.groundAlbedo =
+            check.number(skyJson.value("groundAlbedo", json(p.daylight.groundAlbedo)), "sky.groundAlbedo", 0, 1);
+        p.daylight.nightLuminance = check.number(skyJson.value("nightLuminance", json(p.daylight.nightLuminance)),
+                                                 "sky.nightLuminance", 0, 1000);
+        p.frames = check.count(skyJson.value("frames", json(p.frames)), "sky.frames", 1, 4096);
+        p.imageWidth = check.count(skyJson.value("imageWidth", json(p.imageWidth)), "sky.imageWidth", 4, 1024);
+        if (p.imageWidth % 2 != 0)
+            check.fail("sky.imageWidth", "must be even (the backdrop is a 2:1 panorama)");
+        p.imageHeight = p.imageWidth / 2;
+        if (skyJson.contains("maps")) {
+            const json& maps = skyJson["maps"];
+            if (!maps.is_array() || maps.empty() || maps.size() > 1024)
+                check.fail("sky.maps", "must be an array of 1 to 1024 panorama file names");
+            for (size_t i = 0; i < maps.size(); ++i) {
+                if (!maps[i].is_string() || maps[i].get<std::string>().empty())
+                    check.fail("sky.maps[" + std::to_string(i) + "]", "must be a file name");
+                scene.sky.maps.push_back(path.parent_path() / maps[i].get<std::string>());
+            }
+        }
     }
 
     scene.resolved = std::move(resolved);

@@ -4,8 +4,10 @@
 // naming the file and the key.
 #pragma once
 
+#include "sky/sky_day.h"
 #include <cstdint>
 #include <filesystem>
+
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -53,6 +55,13 @@ struct MotionParams {
     float lod0MaxError = 0.01f;  // relative PCA error allowed at LOD0
 };
 
+// The sky over a day (DESIGN.md 2.6): the analytic daylight sky, or a user's HDR panoramas
+// spread over the day in its place.
+struct SkySource {
+    sky::SkyParams params;                   // preset defaults, overridden by the scene
+    std::vector<std::filesystem::path> maps; // EXR/HDR panoramas, relative to the scene file; empty: analytic
+};
+
 struct Scene {
     std::filesystem::path path;
     std::string name;
@@ -64,6 +73,7 @@ struct Scene {
     PlantsParams plants;
     WindParams wind;
     MotionParams motion;
+    SkySource sky;
     nlohmann::json resolved; // the scene after the preset merge, with the effective seed
 };
 

@@ -121,6 +121,11 @@ int runInspect(const Args& argv) {
         plants += lib.clumps[inst.mesh].plants;
     j["field"] = {{"clumps", lib.field.size()}, {"plants", plants}};
     j["atlas"] = {{"width", lib.atlas.width}, {"height", lib.atlas.height}};
+    j["sky"] = {{"frames", lib.sky.frames.size()},
+                {"source", lib.skyFromMaps ? "panoramas" : "analytic"},
+                {"shOrder", lib.sky.shOrder},
+                {"imageWidth", lib.sky.imageWidth},
+                {"imageHeight", lib.sky.imageHeight}};
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
 }

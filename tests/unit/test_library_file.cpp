@@ -146,6 +146,13 @@ TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
     EXPECT_LT(clump.motion.maxBlockRank(0), clump.motion.lodModes[0]);
     EXPECT_TRUE(clump.graph.stronglyConnected);
     EXPECT_GT(lib.atlas.width, 0u);
+    // The day of sky: the preset's frames in time order, each with order-3 RGB SH and its backdrop.
+    ASSERT_EQ(lib.sky.frames.size(), scene.sky.params.frames);
+    EXPECT_FALSE(lib.skyFromMaps);
+    EXPECT_EQ(lib.sky.frames[0].sh.size(), 27u);
+    EXPECT_EQ(lib.sky.frames[0].image.size(), size_t(lib.sky.imageWidth) * lib.sky.imageHeight * 3);
+    // Noon is brighter than midnight (c00 of green).
+    EXPECT_GT(lib.sky.frames[lib.sky.frames.size() / 2].sh[1], 100.0f * lib.sky.frames[0].sh[1]);
 }
 
 TEST(Library, CorruptCacheIsRebuiltNotTrusted) {

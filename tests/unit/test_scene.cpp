@@ -71,3 +71,40 @@ TEST(Scene, ErrorsNameTheFileAndTheKey) {
     EXPECT_NE(errorOf(writeScene("nofile.json", kMinimal), "medium").find("unknown preset"), std::string::npos);
     EXPECT_NE(errorOf("/nonexistent/scene.json").find("cannot open"), std::string::npos);
 }
+
+TEST(Scene, SkyTakesPresetDefaultsAndOverrides) {
+    auto base = writeScene("sky-default.json", kMinimal);
+    EXPECT_EQ(loadScene(base, "ci", std::nullopt).sky.params.frames, 48u);
+    EXPECT_EQ(loadScene(base, "full", std::nullopt).sky.params.frames, 288u);
+    EXPECT_TRUE(loadScene(base, "full", std::nullopt).sky.maps.empty());
+    auto p = writeScene("sky.json", R"({"name": "t", "seed": 5, "testField": {"countX": 1, "countZ": 1, "spacing": 1},
+      "sky": {"latitude": -33.9, "dayOfYear": 355, "turbidity": 2.5, "frames": 96, "imageWidth": 32,
+              "maps": ["skies/dawn.exr", "skies/noon.hdr"]}})");
+    Scene s = loadScene(p, "full", std::nullopt);
+    EXPECT_NEAR(s.sky.params.latitudeDegrees, -33.9, 1e-5); // stored through a float
+    EXPECT_EQ(s.sky.params.dayOfYear, 355.0);
+    EXPECT_NEAR(s.sky.params.daylight.turbidity, 2.5, 1e-6);
+    EXPECT_EQ(s.sky.params.frames, 96u);
+    EXPECT_EQ(s.sky.params.imageWidth, 32u);
+    EXPECT_EQ(s.sky.params.imageHeight, 16u);
+    ASSERT_EQ(s.sky.maps.size(), 2u);
+    EXPECT_EQ(s.sky.maps[0], p.parent_path() / "skies/dawn.exr"); // relative to the scene file
+}
+
+TEST(Scene, SkyErrorsNameTheKey) {
+    auto scene = [](const std::string& sky) {
+        return R"({"name": "t", "seed": 5, "testField": {"countX": 1, "countZ": 1, "spacing": 1}, "sky": )" + sky + "}";
+    };
+    EXPECT_NE(errorOf(writeScene("s1.json", scene(R"({"latitude": 95})"))).find("sky.latitude must be between"),
+              std::string::npos);
+    EXPECT_NE(errorOf(writeScene("s2.json", scene(R"({"imageWidth": 33})"))).find("sky.imageWidth must be even"),
+              std::string::npos);
+    EXPECT_NE(errorOf(writeScene("s3.json", scene(R"({"maps": []})"))).find("sky.maps must be an array"),
+              std::string::npos);
+    EXPECT_NE(errorOf(writeScene("s4.json", scene(R"({"maps": [3]})"))).find("sky.maps[0] must be a file name"),
+              std::string::npos);
+    EXPECT_NE(errorOf(writeScene("s5.json", scene(R"({"sun": 1})"))).find("sky.sun is not a known key"),
+              std::string::npos);
+    EXPECT_NE(errorOf(writeScene("s6.json", scene(R"({"turbidity": 1.0})"))).find("sky.turbidity must be between"),
+              std::string::npos);
+}
