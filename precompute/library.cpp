@@ -13,13 +13,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <tbb/parallel_for.h>
 
 namespace meadow {
 namespace {
 
 // Bump when what precompute produces changes for the same inputs.
-constexpr uint32_t kPrecomputeVersion = 4;
+constexpr uint32_t kPrecomputeVersion = 5;
 
 std::string hex(uint64_t v) {
     char buf[17];
@@ -189,6 +190,101 @@ LibraryClump readClump(ByteReader& r, const std::string& where) {
         c.levels.push_back(s);
     }
     return c;
+}
+
+// --- light ---------------------------------------------------------------------------------
+
+void writeAppearance(ByteWriter& w, const AppearanceModel& m) {
+    w.f32s(std::vector<float>(m.mean.data(), m.mean.data() + m.mean.size()));
+    w.u32(uint32_t(m.basis.cols()));
+    // The basis in half floats: its values are of order 1 / sqrt(n) and the Monte-Carlo noise of
+    // the bake (several per cent, see ClumpLight) is far above half precision's 0.05 %.
+    w.f16s(std::vector<float>(m.basis.data(), m.basis.data() + m.basis.size()));
+    // Frame-major: a frame's coordinates are contiguous, as an instance reads them.
+    w.u32(uint32_t(m.coords.cols()));
+    w.f32s(std::vector<float>(m.coords.data(), m.coords.data() + m.coords.size()));
+    w.u32s(m.bakedFrames);
+    w.f32s(std::vector<float>(m.relativeErrorPerMode.begin(), m.relativeErrorPerMode.end()));
+}
+
+AppearanceModel readAppearance(ByteReader& r, size_t values, uint32_t frames,
+                               const std::function<Error(const std::string&)>& fail) {
+    AppearanceModel m;
+    std::vector<float> mean = r.f32s();
+    const uint32_t modes = r.u32();
+    std::vector<float> basis = r.f16s();
+    const uint32_t coordFrames = r.u32();
+    std::vector<float> coords = r.f32s();
+    m.bakedFrames = r.u32s();
+    std::vector<float> errors = r.f32s();
+    if (mean.size() != values || basis.size() != values * modes || coordFrames != frames ||
+        coords.size() != size_t(modes) * frames || errors.size() < size_t(modes) + 1)
+        throw fail("an appearance model has the wrong size");
+    for (const std::vector<float>* v : {&mean, &basis, &coords, &errors})
+        for (float x : *v)
+            if (!std::isfinite(x))
+                throw fail("an appearance model holds a non-finite value");
+    for (uint32_t f : m.bakedFrames)
+        if (f >= frames)
+            throw fail("an appearance model names baked frame " + std::to_string(f) + " of " + std::to_string(frames));
+    m.mean = Eigen::Map<const Eigen::VectorXf>(mean.data(), Eigen::Index(values));
+    m.basis = Eigen::Map<const Eigen::MatrixXf>(basis.data(), Eigen::Index(values), Eigen::Index(modes));
+    m.coords = Eigen::Map<const Eigen::MatrixXf>(coords.data(), Eigen::Index(modes), Eigen::Index(frames));
+    m.relativeErrorPerMode.assign(errors.begin(), errors.end());
+    return m;
+}
+
+void writeLight(ByteWriter& w, const ClumpLight& light) {
+    w.u32(uint32_t(light.order));
+    w.u32s(light.bakedFrames);
+    w.u32(light.vertices.valuesPerVertex);
+    // Half floats, as the appearance basis: the bake's noise is far above their 0.05 %.
+    w.f16s(light.vertices.coefficients);
+    w.u32(light.groundResolution);
+    w.f32(light.groundSize);
+    if (light.groundResolution > 0)
+        writeAppearance(w, light.ground);
+    for (double figure : {light.vertexNoise, light.groundNoise, light.vertexHeldOutError, light.vertexMeanOnlyError,
+                          light.groundHeldOutError, light.vertexIrradianceNoise, light.groundIrradianceNoise})
+        w.f32(float(figure));
+}
+
+ClumpLight readLight(ByteReader& r, const LibraryClump& clump, const std::string& where) {
+    auto fail = [&](const std::string& what) { return Error(where + ": clump " + clump.name + ": " + what); };
+    ClumpLight light;
+    light.order = int(r.u32());
+    if (light.order < 1 || light.order > sh::kMaxOrder)
+        throw fail("SH order " + std::to_string(light.order) + " is out of range");
+    const uint32_t coefficients = uint32_t(sh::coefficientCount(light.order));
+    light.bakedFrames = r.u32s();
+    for (uint32_t f : light.bakedFrames)
+        if (f >= clump.motion.frames)
+            throw fail("baked frame " + std::to_string(f) + " is beyond the " + std::to_string(clump.motion.frames) +
+                       " motion frames");
+    VertexAppearance& v = light.vertices;
+    v.vertexCount = uint32_t(clump.mesh.vertices.size());
+    v.valuesPerVertex = r.u32();
+    if (v.valuesPerVertex != transfer::kSideCount * transfer::kChannelCount * coefficients)
+        throw fail("vertex transfer has " + std::to_string(v.valuesPerVertex) + " values per vertex");
+    v.coefficients = r.f16s();
+    if (v.coefficients.size() != size_t(v.vertexCount) * v.valuesPerVertex * 4)
+        throw fail("vertex transfer has the wrong size");
+    for (float x : v.coefficients)
+        if (!std::isfinite(x))
+            throw fail("vertex transfer holds a non-finite value");
+    light.groundResolution = r.u32();
+    light.groundSize = r.f32();
+    if (light.groundResolution > 256 || !(light.groundSize >= 0.0f && light.groundSize < 1000.0f))
+        throw fail("the ground grid is " + std::to_string(light.groundResolution) + " points wide");
+    if (light.groundResolution > 0)
+        light.ground = readAppearance(
+            r, size_t(light.groundResolution) * light.groundResolution * transfer::kChannelCount * coefficients,
+            clump.motion.frames, fail);
+    for (double* figure :
+         {&light.vertexNoise, &light.groundNoise, &light.vertexHeldOutError, &light.vertexMeanOnlyError,
+          &light.groundHeldOutError, &light.vertexIrradianceNoise, &light.groundIrradianceNoise})
+        *figure = r.f32();
+    return light;
 }
 
 // --- sky --------------------------------------------------------------------------------------
@@ -397,6 +493,30 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     }
     file.sections["CLMP"] = clumps.take();
 
+    say("light: baking %u frames per wind level of each clump, %u rays per vertex, %u bounces",
+        scene.light.framesPerLevel, scene.light.bake.raysPerVertex, scene.light.bake.bounces);
+    const RgbaImage atlasImage{atlas.width, atlas.height, atlas.rgba};
+    // The error figures are measured under a clear noon sky of the scene's own latitude and day.
+    const std::vector<float> testSky = sky::buildSkyFrame(scene.sky.params, 12.0).sh;
+    std::vector<ClumpLight> lights(motions.size());
+    tbb::parallel_for(size_t(0), motions.size(), [&](size_t i) {
+        const Mesh mesh = clumpRenderMesh(motions[i]);
+        lights[i] = buildClumpLight(motions[i], mesh, vertexAlbedo(mesh, atlasImage), scene.light, testSky);
+    });
+    ByteWriter light;
+    light.u32(uint32_t(lights.size()));
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const ClumpLight& l = lights[i];
+        say("clump %s light: %zu frames baked (noise %.2f%%); noon irradiance at held-out frames within %.2f%% "
+            "(mean alone %.2f%%, noise %.2f%%); ground %td modes, within %.2f%% (noise %.2f%%) (bake %.1f s, fit %.1f "
+            "s)",
+            motions[i].clump.name.c_str(), l.bakedFrames.size(), l.vertexNoise * 100.0, l.vertexHeldOutError * 100.0,
+            l.vertexMeanOnlyError * 100.0, l.vertexIrradianceNoise * 100.0, l.ground.basis.cols(),
+            l.groundHeldOutError * 100.0, l.groundIrradianceNoise * 100.0, l.bakeSeconds, l.reduceSeconds);
+        writeLight(light, l);
+    }
+    file.sections["LITE"] = light.take();
+
     std::vector<gpu::GpuInstance> field = placeField(scene, radii);
     say("field: %zu instances", field.size());
     ByteWriter w;
@@ -461,6 +581,14 @@ Library loadLibrary(const std::filesystem::path& path) {
         r.expectEnd();
     }
 
+    {
+        ByteReader r(section("LITE"), where + ": section 'LITE'");
+        if (r.u32() != lib.clumps.size())
+            throw Error(where + ": section 'LITE' does not hold one entry per clump");
+        for (LibraryClump& clump : lib.clumps)
+            clump.light = readLight(r, clump, where + ": section 'LITE'");
+        r.expectEnd();
+    }
     {
         ByteReader r(section("SKYD"), where + ": section 'SKYD'");
         lib.sky = readSky(r, where + ": section 'SKYD'", lib.skyFromMaps);

@@ -6,10 +6,13 @@
 //          its motion graph and the statistics of its simulation
 //   "ATLS" the plants' texture atlas: u32 width, u32 height, 8-bit sRGB RGBA texels
 //   "TFLD" the field: u32 count, then per instance gpu::GpuInstance (4 + 4 words)
+//   "LITE" per clump: SH order, the vertex and ground appearance models (mean, basis, per-frame
+//          coordinates, error per mode), the ground grid, held-out errors
 //   "SKYD" the day of sky: SH order, backdrop size, source (0 analytic, 1 panoramas), then per
 //          frame its time, sun direction, radiance and irradiance, SH and backdrop image
 #pragma once
 
+#include "clump_light.h"
 #include "clump_motion.h"
 #include "gpu_types.h"
 #include "mesh.h"
@@ -27,6 +30,7 @@ struct LibraryClump {
     uint32_t plants = 0;
     Mesh mesh;          // the mean pose, atlas UVs
     MotionBasis motion; // x̄ + U q per rod block; frames over all levels
+    ClumpLight light;   // transfer of the clump and its ground over the motion (timings not stored)
     MotionGraph graph;
     std::vector<LevelStats> levels;
 };

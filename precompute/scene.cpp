@@ -237,6 +237,33 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
         }
     }
 
+    scene.light.bake = transfer::bakeSettingsForPreset(preset);
+    if (preset == "ci")
+        scene.light.framesPerLevel = 8;
+    if (resolved.contains("light")) {
+        const json& light = resolved["light"];
+        check.onlyKeys(light, "light",
+                       {"raysPerVertex", "bounces", "framesPerLevel", "appearanceMaxError", "maxAppearanceModes",
+                        "groundGridSize", "groundGridResolution", "groundRaysPerPoint"});
+        LightParams& l = scene.light;
+        l.bake.raysPerVertex =
+            check.count(light.value("raysPerVertex", json(l.bake.raysPerVertex)), "light.raysPerVertex", 8, 65536);
+        l.bake.bounces = check.count(light.value("bounces", json(l.bake.bounces)), "light.bounces", 0, 16);
+        l.framesPerLevel =
+            check.count(light.value("framesPerLevel", json(l.framesPerLevel)), "light.framesPerLevel", 2, 1000);
+        l.appearanceMaxError = check.number(light.value("appearanceMaxError", json(l.appearanceMaxError)),
+                                            "light.appearanceMaxError", 0.0f, 1.0f);
+        l.maxAppearanceModes = check.count(light.value("maxAppearanceModes", json(l.maxAppearanceModes)),
+                                           "light.maxAppearanceModes", 1, 256);
+        l.bake.groundGridSize = check.number(light.value("groundGridSize", json(l.bake.groundGridSize)),
+                                             "light.groundGridSize", 0.05f, 100.0f);
+        l.bake.groundGridResolution =
+            check.count(light.value("groundGridResolution", json(l.bake.groundGridResolution)),
+                        "light.groundGridResolution", 2, 256);
+        l.bake.groundRaysPerPoint = check.count(light.value("groundRaysPerPoint", json(l.bake.groundRaysPerPoint)),
+                                                "light.groundRaysPerPoint", 8, 65536);
+    }
+
     scene.resolved = std::move(resolved);
     return scene;
 }

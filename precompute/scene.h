@@ -5,6 +5,7 @@
 #pragma once
 
 #include "sky/sky_day.h"
+#include "transfer/transfer.h"
 #include <cstdint>
 #include <filesystem>
 
@@ -62,6 +63,14 @@ struct SkySource {
     std::vector<std::filesystem::path> maps; // EXR/HDR panoramas, relative to the scene file; empty: analytic
 };
 
+// How the clumps' light transfer is baked and reduced (DESIGN.md 2.5).
+struct LightParams {
+    transfer::BakeSettings bake;      // preset defaults (transfer::bakeSettingsForPreset), overridden by the scene
+    uint32_t framesPerLevel = 20;     // motion frames baked per wind level, first and last included (ci: 8)
+    float appearanceMaxError = 0.02f; // relative to the transfer itself
+    uint32_t maxAppearanceModes = 16;
+};
+
 struct Scene {
     std::filesystem::path path;
     std::string name;
@@ -74,6 +83,7 @@ struct Scene {
     WindParams wind;
     MotionParams motion;
     SkySource sky;
+    LightParams light;
     nlohmann::json resolved; // the scene after the preset merge, with the effective seed
 };
 

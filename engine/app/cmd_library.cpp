@@ -82,7 +82,9 @@ int runInspect(const Args& argv) {
         // Levels of detail by simplification are later work: LOD0, the full mesh, is all there is.
         clump["lods"] = {{{"vertices", c.mesh.vertices.size()},
                           {"triangles", c.mesh.indices.size() / 3},
-                          {"motionModes", c.motion.lodModes[0]}}};
+                          {"motionModes", c.motion.lodModes[0]},
+                          // Per-vertex first-order transfer (mean and displacement gradient), no modes.
+                          {"appearanceModes", 0}}};
         const MotionGraph& g = c.graph;
         uint32_t levelsConnected = 0;
         for (uint8_t connected : g.levelStronglyConnected)
@@ -114,6 +116,22 @@ int runInspect(const Args& argv) {
                              {"stronglyConnected", g.stronglyConnected},
                              {"levelsStronglyConnected", levelsConnected == g.levelCount}}},
                            {"levels", levels}};
+        const ClumpLight& light = c.light;
+        clump["light"] = {{"shOrder", light.order},
+                          {"bakedFrames", light.bakedFrames.size()},
+                          {"model", "mean + displacement gradient"},
+                          {"bakeNoise", light.vertexNoise},
+                          {"heldOutIrradianceRelError", light.vertexHeldOutError},
+                          {"meanOnlyIrradianceRelError", light.vertexMeanOnlyError},
+                          {"irradianceNoise", light.vertexIrradianceNoise},
+                          {"ground",
+                           {{"resolution", light.groundResolution},
+                            {"size", light.groundSize},
+                            {"appearanceModes", light.ground.basis.cols()},
+                            {"appearanceRelError", light.ground.relativeErrorPerMode},
+                            {"bakeNoise", light.groundNoise},
+                            {"heldOutIrradianceRelError", light.groundHeldOutError},
+                            {"irradianceNoise", light.groundIrradianceNoise}}}};
         j["clumps"].push_back(clump);
     }
     uint32_t plants = 0;

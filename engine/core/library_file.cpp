@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <glm/gtc/packing.hpp>
 #include <unistd.h>
 
 namespace meadow {
@@ -75,6 +76,15 @@ void ByteWriter::f32s(const std::vector<float>& v) {
         f32(x);
 }
 
+void ByteWriter::f16s(const std::vector<float>& v) {
+    u32(static_cast<uint32_t>(v.size()));
+    for (float x : v) {
+        const uint16_t h = glm::packHalf1x16(x);
+        const uint8_t b[2] = {uint8_t(h & 0xff), uint8_t(h >> 8)};
+        bytes(b, 2);
+    }
+}
+
 size_t ByteReader::checkedCount(size_t elementSize, size_t maxCount) {
     size_t count = u32();
     if (count > maxCount || count > remaining() / elementSize)
@@ -102,6 +112,16 @@ std::vector<float> ByteReader::f32s(size_t maxCount) {
     std::vector<float> v(checkedCount(4, maxCount));
     for (float& x : v)
         x = f32();
+    return v;
+}
+
+std::vector<float> ByteReader::f16s(size_t maxCount) {
+    std::vector<float> v(checkedCount(2, maxCount));
+    for (float& x : v) {
+        uint8_t b[2];
+        bytes(b, 2);
+        x = glm::unpackHalf1x16(uint16_t(b[0] | (b[1] << 8)));
+    }
     return v;
 }
 

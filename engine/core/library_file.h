@@ -48,6 +48,9 @@ class ByteWriter {
     void u8s(const std::vector<uint8_t>& v);
     void u32s(const std::vector<uint32_t>& v);
     void f32s(const std::vector<float>& v);
+    // Stored as IEEE half floats (about 3 significant digits): for bulk data whose own error is
+    // far larger, such as Monte-Carlo light transfer. Values must be finite and within +-65504.
+    void f16s(const std::vector<float>& v);
     std::vector<uint8_t> take() { return std::move(data_); }
 
   private:
@@ -66,6 +69,7 @@ class ByteReader {
     std::vector<uint8_t> u8s(size_t maxCount = ~size_t(0));
     std::vector<uint32_t> u32s(size_t maxCount = ~size_t(0));
     std::vector<float> f32s(size_t maxCount = ~size_t(0));
+    std::vector<float> f16s(size_t maxCount = ~size_t(0));
     size_t remaining() const { return data_.size() - at_; }
     // Throws unless every byte was consumed.
     void expectEnd() const;

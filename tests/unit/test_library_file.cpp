@@ -117,6 +117,24 @@ TEST(LibraryFile, RejectsCorruptionNamingTheFile) {
     EXPECT_NE(readError(tempPath("absent.mlib")).find("cannot open"), std::string::npos);
 }
 
+TEST(LibraryFile, HalfFloatsRoundTripWithinHalfPrecision) {
+    const std::vector<float> values = {0.0f, 1.0f, -2.5f, 0.0021f, 3.0e-6f, 65504.0f, -1.0e-3f};
+    ByteWriter w;
+    w.f16s(values);
+    std::vector<uint8_t> bytes = w.take();
+    ASSERT_EQ(bytes.size(), 4u + 2u * values.size());
+    EXPECT_EQ(bytes[4 + 2], 0x00); // 1.0 is 0x3c00, little-endian
+    EXPECT_EQ(bytes[4 + 3], 0x3c);
+    ByteReader r(bytes, "test");
+    std::vector<float> back = r.f16s();
+    ASSERT_EQ(back.size(), values.size());
+    for (size_t i = 0; i < values.size(); ++i) {
+        // Half precision: 11 significant bits for normal values, steps of 2^-24 below 2^-14.
+        const float tolerance = std::max(std::abs(values[i]) * 1.0f / 1024.0f, 1.0f / 16777216.0f);
+        EXPECT_NEAR(back[i], values[i], tolerance) << i;
+    }
+}
+
 TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
     const char* tiny = MEADOW_SOURCE_DIR "/tests/data/scenes/tiny.json";
     Scene scene = loadScene(tiny, "ci", std::nullopt);
@@ -151,6 +169,18 @@ TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
     EXPECT_FALSE(lib.skyFromMaps);
     EXPECT_EQ(lib.sky.frames[0].sh.size(), 27u);
     EXPECT_EQ(lib.sky.frames[0].image.size(), size_t(lib.sky.imageWidth) * lib.sky.imageHeight * 3);
+    // Light: transfer of both sides of every vertex, RGB, order 3, with its displacement gradient;
+    // the ground grid with coordinates for every frame; held-out errors measured.
+    const ClumpLight& light = clump.light;
+    EXPECT_EQ(light.order, 3);
+    EXPECT_EQ(light.vertices.vertexCount, clump.mesh.vertices.size());
+    EXPECT_EQ(light.vertices.valuesPerVertex, 2u * 3u * 9u);
+    EXPECT_GE(light.bakedFrames.size(), 4u);
+    EXPECT_GT(light.groundResolution, 1u);
+    EXPECT_EQ(light.ground.coords.cols(), Eigen::Index(clump.motion.frames));
+    EXPECT_GT(light.vertexNoise, 0.0);
+    EXPECT_GT(light.vertexHeldOutError, 0.0);
+    EXPECT_LT(light.vertexHeldOutError, 0.5);
     // Noon is brighter than midnight (c00 of green).
     EXPECT_GT(lib.sky.frames[lib.sky.frames.size() / 2].sh[1], 100.0f * lib.sky.frames[0].sh[1]);
 }
