@@ -20,7 +20,7 @@ namespace meadow {
 namespace {
 
 // Bump when what precompute produces changes for the same inputs.
-constexpr uint32_t kPrecomputeVersion = 5;
+constexpr uint32_t kPrecomputeVersion = 7;
 
 std::string hex(uint64_t v) {
     char buf[17];
@@ -405,31 +405,6 @@ uint64_t libraryInputHash(const Scene& scene) {
     return hash;
 }
 
-std::vector<gpu::GpuInstance> placeField(const Scene& scene, const std::vector<float>& clumpRadii) {
-    const TestFieldParams& p = scene.testField;
-    Random rng(scene.seed ^ 0x7465737466696c64ull); // "testfild"
-    std::vector<gpu::GpuInstance> out;
-    out.reserve(size_t(p.countX) * p.countZ);
-    float originX = -0.5f * p.spacing * static_cast<float>(p.countX - 1);
-    float originZ = -0.5f * p.spacing * static_cast<float>(p.countZ - 1);
-    for (uint32_t z = 0; z < p.countZ; ++z) {
-        for (uint32_t x = 0; x < p.countX; ++x) {
-            gpu::GpuInstance inst{};
-            float jx = rng.uniform(-p.jitter, p.jitter) * p.spacing;
-            float jz = rng.uniform(-p.jitter, p.jitter) * p.spacing;
-            float scale = rng.uniform(p.scaleMin, p.scaleMax);
-            inst.yaw = rng.uniform(-0.35f, 0.35f); // limited: the wind has one direction
-            inst.tint = rng.uniform();
-            inst.mesh = uint32_t(rng.next() % clumpRadii.size());
-            inst.boundingRadius = clumpRadii[inst.mesh];
-            inst.positionScale =
-                glm::vec4(originX + p.spacing * float(x) + jx, 0.0f, originZ + p.spacing * float(z) + jz, scale);
-            out.push_back(inst);
-        }
-    }
-    return out;
-}
-
 void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool quiet) {
     auto start = std::chrono::steady_clock::now();
     auto say = [&](const char* fmt, auto... args) {
@@ -476,7 +451,6 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
                       [&](size_t i) { motions[i] = buildClumpMotion(plants[i], scene, scene.seed * 1000003ull + i); });
     ByteWriter clumps;
     clumps.u32(uint32_t(motions.size()));
-    std::vector<float> radii;
     for (const ClumpMotion& m : motions) {
         say("clump %s: %zu vertices, %zu triangles, %u frames, LOD0 %u modes (%.2f%% error), graph %u nodes %u edges, "
             "max penetration %.1f mm (simulate %.1f s, PCA %.1f s, graph %.1f s)",
@@ -489,7 +463,6 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
                    1000.0f),
             m.simulateSeconds, m.pcaSeconds, m.graphSeconds);
         writeClump(clumps, m);
-        radii.push_back(clumpRenderMesh(m).boundingRadius);
     }
     file.sections["CLMP"] = clumps.take();
 
@@ -517,19 +490,55 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     }
     file.sections["LITE"] = light.take();
 
-    std::vector<gpu::GpuInstance> field = placeField(scene, radii);
-    say("field: %zu instances", field.size());
-    ByteWriter w;
-    w.u32(static_cast<uint32_t>(field.size()));
-    for (const gpu::GpuInstance& inst : field) {
-        for (int i = 0; i < 4; ++i)
-            w.f32(inst.positionScale[i]);
-        w.f32(inst.yaw);
-        w.f32(inst.boundingRadius);
-        w.f32(inst.tint);
-        w.u32(inst.mesh);
+    std::vector<Mesh> meshes;
+    for (const ClumpMotion& m : motions)
+        meshes.push_back(clumpRenderMesh(m));
+    PlacedField placed = placeField(scene, motions, meshes);
+    {
+        // Per-instance colour variation, in field order.
+        Random tint(scene.seed ^ 0x74696e74ull); // "tint"
+        for (gpu::GpuInstance& inst : placed.clumps)
+            inst.tint = tint.uniform();
     }
-    file.sections["TFLD"] = w.take();
+    const PlacementStats& fs = placed.stats;
+    say("field: %u x %u tiles of %.1f m, %zu clumps and %zu rocks; %.2fx the density of Poisson discs; %u pairs met "
+        "on the terrain and were resolved (%u clumps, %u rocks removed), %u left",
+        fs.tilesX, fs.tilesY, double(fs.tileSize), placed.clumps.size(), placed.rocks.size(), fs.densityVsPoissonDisc,
+        fs.overlaps3dFound, fs.clumpsRemoved3d, fs.rocksRemoved3d, fs.overlapViolations3d);
+    {
+        ByteWriter w;
+        writeInstances(w, placed.clumps);
+        file.sections["TFLD"] = w.take();
+    }
+    {
+        // Rocks are static: one bake each, with the ground around them.
+        std::vector<LibraryRock> rocks;
+        for (const RockMesh& mesh : placed.rockMeshes) {
+            LibraryRock rock;
+            rock.mesh = mesh;
+            transfer::BakeSettings settings = scene.light.bake;
+            settings.groundGridSize = 2.0f * mesh.size;
+            const std::vector<glm::vec3> albedo(mesh.positions.size(), glm::vec3(0.30f, 0.28f, 0.25f));
+            const std::vector<float> translucency(mesh.positions.size(), 0.0f);
+            const transfer::ClumpTransfer t =
+                transfer::bakeTransfer({mesh.positions, mesh.normals, mesh.indices, albedo, translucency}, settings);
+            rock.order = t.vertices.order;
+            rock.transfer = t.vertices.coefficients;
+            rock.groundResolution = t.ground.resolution;
+            rock.groundSize = t.ground.size;
+            rock.groundTransfer = t.ground.coefficients;
+            rocks.push_back(std::move(rock));
+        }
+        ByteWriter w;
+        writeRocks(w, rocks, placed.rocks);
+        file.sections["ROCK"] = w.take();
+    }
+    {
+        ByteWriter w;
+        writePlacement(w, placed.terrain, glm::normalize(glm::vec2(scene.wind.direction.x, scene.wind.direction.z)),
+                       placed.stats);
+        file.sections["PLCE"] = w.take();
+    }
 
     std::error_code ec;
     if (!path.parent_path().empty())
@@ -594,29 +603,19 @@ Library loadLibrary(const std::filesystem::path& path) {
         lib.sky = readSky(r, where + ": section 'SKYD'", lib.skyFromMaps);
     }
 
-    ByteReader r(section("TFLD"), where + ": section 'TFLD'");
-    uint32_t count = r.u32();
-    if (uint64_t(count) * 32 != r.remaining())
-        throw Error(where + ": section 'TFLD' holds " + std::to_string(r.remaining()) + " bytes for " +
-                    std::to_string(count) + " instances");
-    lib.field.resize(count);
-    for (gpu::GpuInstance& inst : lib.field) {
-        for (int i = 0; i < 4; ++i)
-            inst.positionScale[i] = r.f32();
-        inst.yaw = r.f32();
-        inst.boundingRadius = r.f32();
-        inst.tint = r.f32();
-        inst.mesh = r.u32();
-        bool finite = std::isfinite(inst.yaw) && std::isfinite(inst.boundingRadius) && std::isfinite(inst.tint);
-        for (int i = 0; i < 4; ++i)
-            finite = finite && std::isfinite(inst.positionScale[i]);
-        if (!finite)
-            throw Error(where + ": section 'TFLD' holds a non-finite value");
-        if (inst.mesh >= lib.clumps.size())
-            throw Error(where + ": section 'TFLD' names clump " + std::to_string(inst.mesh) + " of " +
-                        std::to_string(lib.clumps.size()));
+    {
+        ByteReader r(section("TFLD"), where + ": section 'TFLD'");
+        lib.field = readInstances(r, where + ": section 'TFLD'", uint32_t(lib.clumps.size()));
+        r.expectEnd();
     }
-    r.expectEnd();
+    {
+        ByteReader r(section("ROCK"), where + ": section 'ROCK'");
+        readRocks(r, where + ": section 'ROCK'", lib.placement);
+    }
+    {
+        ByteReader r(section("PLCE"), where + ": section 'PLCE'");
+        readPlacement(r, where + ": section 'PLCE'", lib.placement);
+    }
     return lib;
 }
 

@@ -5,7 +5,9 @@
 //   "CLMP" the clumps: per clump its mesh at the mean pose, its motion basis and coordinates,
 //          its motion graph and the statistics of its simulation
 //   "ATLS" the plants' texture atlas: u32 width, u32 height, 8-bit sRGB RGBA texels
-//   "TFLD" the field: u32 count, then per instance gpu::GpuInstance (4 + 4 words)
+//   "TFLD" the field's clumps: u32 count, then per instance gpu::GpuInstance (4 + 4 words)
+//   "ROCK" the rocks: meshes, static light transfer, instances (library_field.h)
+//   "PLCE" the terrain, the Wang tiles' and the field's placement figures
 //   "LITE" per clump: SH order, the vertex and ground appearance models (mean, basis, per-frame
 //          coordinates, error per mode), the ground grid, held-out errors
 //   "SKYD" the day of sky: SH order, backdrop size, source (0 analytic, 1 panoramas), then per
@@ -15,6 +17,7 @@
 #include "clump_light.h"
 #include "clump_motion.h"
 #include "gpu_types.h"
+#include "library_field.h"
 #include "mesh.h"
 #include "scene.h"
 
@@ -39,7 +42,8 @@ struct Library {
     nlohmann::json scene; // resolved scene (preset merged, effective seed)
     std::vector<LibraryClump> clumps;
     RgbaImage atlas;
-    std::vector<gpu::GpuInstance> field;
+    std::vector<gpu::GpuInstance> field; // the clump instances (placement: library_field.h)
+    LibraryField placement;              // terrain, rocks, tiling figures
     sky::SkyDay sky;
     bool skyFromMaps = false; // a user's panoramas rather than the analytic sky
     uint32_t formatVersion = 0;
@@ -54,10 +58,6 @@ std::vector<Mesh> clumpMeshes(const Library& library);
 
 // What the library of `scene` would be built from, hashed: scene, preset, seed, format.
 uint64_t libraryInputHash(const Scene& scene);
-
-// The field's instances: a jittered grid centred on the origin; each instance a random clump
-// with a random yaw, scale and tint.
-std::vector<gpu::GpuInstance> placeField(const Scene& scene, const std::vector<float>& clumpRadii);
 
 // Builds the library of `scene` and writes it to `path` (atomically). Progress goes to stderr.
 void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool quiet = false);

@@ -86,9 +86,9 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     } catch (const json::parse_error& e) {
         throw Error("scene " + path.string() + ": invalid JSON: " + e.what());
     }
-    check.onlyKeys(doc, "",
-                   {"name", "description", "seed", "presets", "testField", "camera", "timeOfDay", "plants", "wind",
-                    "motion", "sky"});
+    check.onlyKeys(
+        doc, "",
+        {"name", "description", "seed", "presets", "field", "camera", "timeOfDay", "plants", "wind", "motion", "sky"});
 
     // Merge the preset's overrides over the base description.
     json resolved = doc;
@@ -128,17 +128,28 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     }
     resolved["seed"] = scene.seed;
 
-    const json& field = check.require(resolved, "", "testField");
-    check.onlyKeys(field, "testField", {"countX", "countZ", "spacing", "jitter", "scaleMin", "scaleMax"});
-    TestFieldParams& tf = scene.testField;
-    tf.countX = check.count(check.require(field, "testField", "countX"), "testField.countX", 1, 4096);
-    tf.countZ = check.count(check.require(field, "testField", "countZ"), "testField.countZ", 1, 4096);
-    tf.spacing = check.number(check.require(field, "testField", "spacing"), "testField.spacing", 0.01f, 100.0f);
-    tf.jitter = check.number(field.value("jitter", json(0.0)), "testField.jitter", 0.0f, 0.5f);
-    tf.scaleMin = check.number(field.value("scaleMin", json(1.0)), "testField.scaleMin", 0.01f, 100.0f);
-    tf.scaleMax = check.number(field.value("scaleMax", json(1.0)), "testField.scaleMax", 0.01f, 100.0f);
-    if (tf.scaleMax < tf.scaleMin)
-        check.fail("testField.scaleMax", "must not be less than testField.scaleMin");
+    const json& field = check.require(resolved, "", "field");
+    check.onlyKeys(field, "field",
+                   {"tilesX", "tilesY", "tileSize", "cellSize", "margin", "yawJitter", "rocksPerTile", "rockVariants",
+                    "sweptFrames", "terrain"});
+    FieldSpec& f = scene.field;
+    f.tilesX = check.count(check.require(field, "field", "tilesX"), "field.tilesX", 1, 1024);
+    f.tilesY = check.count(check.require(field, "field", "tilesY"), "field.tilesY", 1, 1024);
+    f.tileSize = check.number(field.value("tileSize", json(f.tileSize)), "field.tileSize", 0.5f, 1000.0f);
+    f.cellSize = check.number(field.value("cellSize", json(f.cellSize)), "field.cellSize", 0.002f, 1.0f);
+    f.margin = check.number(field.value("margin", json(f.margin)), "field.margin", 0.0f, 1.0f);
+    f.yawJitter = check.number(field.value("yawJitter", json(f.yawJitter)), "field.yawJitter", 0.0f, 3.14159f);
+    f.rocksPerTile = check.count(field.value("rocksPerTile", json(f.rocksPerTile)), "field.rocksPerTile", 0, 1000);
+    f.rockVariants = check.count(field.value("rockVariants", json(f.rockVariants)), "field.rockVariants", 1, 16);
+    f.sweptFrames = check.count(field.value("sweptFrames", json(f.sweptFrames)), "field.sweptFrames", 2, 100000);
+    if (field.contains("terrain")) {
+        const json& terrain = field["terrain"];
+        check.onlyKeys(terrain, "field.terrain", {"amplitude", "wavelength"});
+        f.terrainAmplitude =
+            check.number(terrain.value("amplitude", json(f.terrainAmplitude)), "field.terrain.amplitude", 0.0f, 100.0f);
+        f.terrainWavelength = check.number(terrain.value("wavelength", json(f.terrainWavelength)),
+                                           "field.terrain.wavelength", 1.0f, 10000.0f);
+    }
 
     if (resolved.contains("camera")) {
         const json& cam = resolved["camera"];

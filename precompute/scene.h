@@ -17,13 +17,18 @@
 
 namespace meadow {
 
-struct TestFieldParams {
-    uint32_t countX = 0;   // instances along x
-    uint32_t countZ = 0;   // instances along z
-    float spacing = 1.0f;  // metres between grid points
-    float jitter = 0.0f;   // random offset, as a fraction of the spacing
-    float scaleMin = 1.0f; // uniform scale range
-    float scaleMax = 1.0f;
+// The field (DESIGN.md 2.7): Wang tiles filled by voxel dart throwing, tiled over a terrain.
+struct FieldSpec {
+    uint32_t tilesX = 15, tilesY = 15; // the paper's 15 x 15
+    float tileSize = 6.0f;             // m, edge of a Wang tile
+    float cellSize = 0.025f;           // m, voxel edge of the swept volumes
+    float margin = 0.025f;             // m, safety dilation of every swept volume
+    float yawJitter = 0.3f;            // rad: clumps turn at most this far (the wind has one direction)
+    uint32_t rocksPerTile = 10;        // at most
+    uint32_t rockVariants = 4;
+    uint32_t sweptFrames = 128;      // motion frames voxelised per clump, half from the strongest level
+    float terrainAmplitude = 1.0f;   // m, heights within +-amplitude
+    float terrainWavelength = 40.0f; // m, of the first of three octaves
 };
 
 struct SceneCamera {
@@ -66,7 +71,7 @@ struct SkySource {
 // How the clumps' light transfer is baked and reduced (DESIGN.md 2.5).
 struct LightParams {
     transfer::BakeSettings bake;      // preset defaults (transfer::bakeSettingsForPreset), overridden by the scene
-    uint32_t framesPerLevel = 20;     // motion frames baked per wind level, first and last included (ci: 8)
+    uint32_t framesPerLevel = 12;     // motion frames baked per wind level, first and last included (ci: 8)
     float appearanceMaxError = 0.02f; // relative to the transfer itself
     uint32_t maxAppearanceModes = 16;
 };
@@ -76,7 +81,7 @@ struct Scene {
     std::string name;
     std::string preset; // "ci" or "full"
     uint64_t seed = 0;
-    TestFieldParams testField;
+    FieldSpec field;
     SceneCamera camera;
     float timeOfDay = 12.0f; // local solar hours
     PlantsParams plants;

@@ -5,6 +5,7 @@
 MEADOW_FRAME_BLOCK(0, 0)
 
 layout(location = 0) in vec3 inWorld;
+layout(location = 1) in vec3 inNormal;
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -13,7 +14,7 @@ void main() {
     vec2 q = inWorld.xz * 0.37;
     float variation = 0.5 + 0.25 * (sin(q.x) * sin(q.y * 1.3) + sin(q.x * 0.31 + q.y * 0.17));
     vec3 albedo = mix(vec3(0.16, 0.11, 0.06), vec3(0.22, 0.18, 0.09), variation);
-    vec3 color = albedo * diffuseLight(frame, vec3(0.0, 1.0, 0.0));
+    vec3 color = albedo * diffuseLight(frame, normalize(inNormal));
     float dist = length(inWorld - frame.cameraPosition.xyz);
     float haze = 1.0 - exp(-dist * 0.004);
     outColor = vec4(mix(color, frame.skyHorizon.rgb, haze), 1.0);

@@ -9,6 +9,10 @@ MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer Instances { GpuInstance instances[]; };
 layout(set = 0, binding = 2, std430) readonly buffer VisibleList { uint visible[]; };
 layout(set = 0, binding = 3, std430) readonly buffer Vertices { GpuVertex vertices[]; };
+// xz: the unit normal of the vertical plane that holds the wind direction the clumps were
+// simulated in. A mirrored instance (negative scale) reflects about it before its yaw, so it
+// still sways downwind (placement/instance.h).
+layout(push_constant) uniform InstanceParams { vec4 mirrorNormal; };
 
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec2 outUv;
@@ -20,9 +24,15 @@ void main() {
     GpuVertex v = vertices[gl_VertexIndex];
     float s = sin(inst.yaw), c = cos(inst.yaw);
     mat3 yaw = mat3(c, 0.0, -s, 0.0, 1.0, 0.0, s, 0.0, c);
-    vec3 world = inst.positionScale.xyz + yaw * (v.positionU.xyz * inst.positionScale.w);
+    vec3 p = v.positionU.xyz, n = v.normalV.xyz;
+    if (inst.positionScale.w < 0.0) {
+        vec3 m = vec3(mirrorNormal.x, 0.0, mirrorNormal.z);
+        p -= 2.0 * dot(p, m) * m;
+        n -= 2.0 * dot(n, m) * m;
+    }
+    vec3 world = inst.positionScale.xyz + yaw * (p * abs(inst.positionScale.w));
     gl_Position = frame.viewProj * vec4(world, 1.0);
-    outNormal = yaw * v.normalV.xyz;
+    outNormal = yaw * n;
     outUv = vec2(v.positionU.w, v.normalV.w);
     outTint = inst.tint;
     outHeight = v.positionU.y;

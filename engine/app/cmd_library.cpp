@@ -137,7 +137,26 @@ int runInspect(const Args& argv) {
     uint32_t plants = 0;
     for (const gpu::GpuInstance& inst : lib.field)
         plants += lib.clumps[inst.mesh].plants;
-    j["field"] = {{"clumps", lib.field.size()}, {"plants", plants}};
+    const PlacementStats& ps = lib.placement.stats;
+    j["tiles"] = {{"count", ps.tiles},
+                  {"size", ps.tileSize},
+                  {"clumpsPerTile", ps.clumpsPerTile},
+                  {"rocksPerTile", ps.rocksPerTile},
+                  {"densityVsPoissonDisc", ps.densityVsPoissonDisc},
+                  {"overlapViolations", ps.overlapViolations},
+                  {"sweptFootprintRadius", ps.sweptFootprintRadius}};
+    j["field"] = {{"tilesX", ps.tilesX},
+                  {"tilesY", ps.tilesY},
+                  {"clumps", lib.field.size()},
+                  {"plants", plants},
+                  {"rocks", lib.placement.rockInstances.size()},
+                  {"rockVariants", lib.placement.rocks.size()},
+                  {"overlapsFound3d", ps.overlaps3dFound},
+                  {"clumpsRemoved3d", ps.clumpsRemoved3d},
+                  {"rocksRemoved3d", ps.rocksRemoved3d},
+                  {"overlapViolations3d", ps.overlapViolations3d},
+                  {"terrain",
+                   {{"amplitude", lib.placement.terrain.amplitude}, {"wavelength", lib.placement.terrain.wavelength}}}};
     j["atlas"] = {{"width", lib.atlas.width}, {"height", lib.atlas.height}};
     j["sky"] = {{"frames", lib.sky.frames.size()},
                 {"source", lib.skyFromMaps ? "panoramas" : "analytic"},

@@ -110,7 +110,8 @@ int runRender(const Args& argv) {
     createContext(ctx, contextOptionsFromArgs(args));
     int status = 0;
     {
-        FieldRenderer renderer = createFieldRenderer(ctx, clumpMeshes(library), library.field, library.atlas);
+        FieldRenderer renderer =
+            createFieldRenderer(ctx, clumpMeshes(library), library.field, library.atlas, fieldScenery(library));
         Offscreen offscreen = createOffscreen(ctx, {width, height});
         SkyState sky = skyForTimeOfDay(timeOfDay);
         for (uint32_t i = 0; i < frames; ++i) {
@@ -164,7 +165,8 @@ int runBench(const Args& argv) {
     createContext(ctx, contextOptionsFromArgs(args));
     nlohmann::json j;
     {
-        FieldRenderer renderer = createFieldRenderer(ctx, clumpMeshes(library), field, library.atlas);
+        FieldRenderer renderer =
+            createFieldRenderer(ctx, clumpMeshes(library), field, library.atlas, fieldScenery(library));
         Offscreen offscreen = createOffscreen(ctx, {width, height});
         SkyState sky = skyForTimeOfDay(scene.timeOfDay);
         std::vector<double> frameMs, cpuMs;

@@ -66,8 +66,9 @@ int runSheet(const Args& argv) {
         one.positionScale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
         one.boundingRadius = clump.mesh.boundingRadius * 1.5f; // room for the swaying
         one.tint = 0.5f;
-        FieldRenderer renderer =
-            createFieldRenderer(ctx, std::vector<Mesh>{clump.mesh}, std::vector<gpu::GpuInstance>{one}, library.atlas);
+        FieldRenderer renderer = createFieldRenderer(
+            ctx, std::vector<Mesh>{clump.mesh}, std::vector<gpu::GpuInstance>{one}, library.atlas,
+            {makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(2.0f), 2.0f, 0.5f), library.placement.windDirection});
         Offscreen offscreen = createOffscreen(ctx, {cellW, cellH});
         // Side view: the wind blows across the picture, left to right.
         glm::vec3 wind = scene.wind.direction;

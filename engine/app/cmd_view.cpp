@@ -119,7 +119,8 @@ int runView(const Args& argv) {
     createContext(ctx, options);
     int status = 0;
     {
-        FieldRenderer renderer = createFieldRenderer(ctx, clumpMeshes(library), library.field, library.atlas);
+        FieldRenderer renderer =
+            createFieldRenderer(ctx, clumpMeshes(library), library.field, library.atlas, fieldScenery(library));
         Window window = createWindow(ctx, "meadow — " + scene.name, width, height);
         window.vsync = !args.has("--no-vsync");
         GpuTimer timer = createGpuTimer(ctx, 16);

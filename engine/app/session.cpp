@@ -57,4 +57,12 @@ int validationExitStatus(const Context& ctx) {
     return v.total() == 0 ? 0 : kExitValidationFailed;
 }
 
+FieldScenery fieldScenery(const Library& library) {
+    const PlacementStats& stats = library.placement.stats;
+    const glm::vec2 half = 0.5f * stats.tileSize * glm::vec2(float(stats.tilesX), float(stats.tilesY));
+    // 1 m spacing follows hills of tens of metres within millimetres; 20 m of margin ease them
+    // into the plain.
+    return {makeTerrainMesh(library.placement.terrain, half, 20.0f, 1.0f), library.placement.windDirection};
+}
+
 } // namespace meadow

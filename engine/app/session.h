@@ -5,6 +5,7 @@
 #include "app/args.h"
 #include "library.h"
 #include "render/camera.h"
+#include "render/field_renderer.h"
 #include "scene.h"
 #include "vk/context.h"
 
@@ -20,6 +21,9 @@ ContextOptions contextOptionsFromArgs(const ParsedArgs& args);
 
 // The scene's camera, overridden by --camera EX,EY,EZ,TX,TY,TZ.
 Camera cameraFromArgs(const ParsedArgs& args, const Scene& scene);
+
+// The library's terrain and wind direction, as the field renderer draws them.
+FieldScenery fieldScenery(const Library& library);
 
 // Prints the validation summary when validation ran; returns the exit status to use: 0, or 3
 // when the layer reported anything.

@@ -11,13 +11,16 @@
 namespace meadow {
 
 FieldRenderer createFieldRenderer(Context& ctx, std::span<const Mesh> meshes,
-                                  std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas) {
+                                  std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
+                                  const FieldScenery& scenery) {
     if (instances.empty())
         throw Error("the field has no instances to draw");
     if (meshes.empty())
         throw Error("the field has no meshes to draw");
     if (atlas.rgba.size() != size_t(atlas.width) * atlas.height * 4 || atlas.width == 0)
         throw Error("the field's texture atlas is empty or the wrong size");
+    if (scenery.terrain.indices.empty() || glm::length(scenery.windDirection) < 1e-6f)
+        throw Error("the field has no terrain or no wind direction");
     FieldRenderer r;
     r.instanceCount = static_cast<uint32_t>(instances.size());
     r.meshCount = static_cast<uint32_t>(meshes.size());
@@ -28,11 +31,13 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const Mesh> meshes,
     skyDesc.depthTest = false;
     skyDesc.depthWrite = false;
     r.sky = createGraphicsPipeline(ctx, skyDesc);
-    GraphicsPipelineDesc groundDesc{"ground.vert", "ground.frag", kHdrFormat, kDepthFormat};
-    groundDesc.pushConstantSize = sizeof(glm::vec4);
-    r.ground = createGraphicsPipeline(ctx, groundDesc);
-    r.instance =
-        createGraphicsPipeline(ctx, GraphicsPipelineDesc{"instance.vert", "instance.frag", kHdrFormat, kDepthFormat});
+    r.ground =
+        createGraphicsPipeline(ctx, GraphicsPipelineDesc{"ground.vert", "ground.frag", kHdrFormat, kDepthFormat});
+    GraphicsPipelineDesc instanceDesc{"instance.vert", "instance.frag", kHdrFormat, kDepthFormat};
+    instanceDesc.pushConstantSize = sizeof(glm::vec4);
+    r.instance = createGraphicsPipeline(ctx, instanceDesc);
+    const glm::vec2 wind = glm::normalize(scenery.windDirection);
+    r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);
 
     // All meshes share one vertex and one index buffer; each gets one indirect draw whose
     // instance range in the visible list holds room for all of that mesh's instances.
@@ -88,15 +93,14 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const Mesh> meshes,
     r.atlas = createTexture(ctx, {atlas.width, atlas.height}, VK_FORMAT_R8G8B8A8_SRGB, atlas.rgba.data());
     r.sampler = createLinearSampler(ctx);
 
-    // The ground covers the field's extent with a wide margin so its edge stays out of view.
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const gpu::GpuInstance& inst : instances) {
-        lo = glm::min(lo, glm::vec3(inst.positionScale));
-        hi = glm::max(hi, glm::vec3(inst.positionScale));
-    }
-    glm::vec3 center = (lo + hi) * 0.5f;
-    float half = std::max(hi.x - lo.x, hi.z - lo.z) * 0.5f;
-    r.groundCenterHalfSize = glm::vec4(center.x, lo.y, center.z, half + 1000.0f);
+    r.terrainVertices =
+        createBuffer(ctx, scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex), storage, MemoryUse::Device);
+    r.terrainIndices =
+        createBuffer(ctx, scenery.terrain.indices.size() * sizeof(uint32_t),
+                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
+    uploadToBuffer(ctx, r.terrainVertices, scenery.terrain.vertices.data(), r.terrainVertices.size);
+    uploadToBuffer(ctx, r.terrainIndices, scenery.terrain.indices.data(), r.terrainIndices.size);
+    r.terrainIndexCount = uint32_t(scenery.terrain.indices.size());
     return r;
 }
 
@@ -104,7 +108,7 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.cull, &r.tonemap, &r.sky, &r.ground, &r.instance})
         destroyPipeline(ctx, *p);
     for (Buffer* b : {&r.frameUniforms, &r.instances, &r.vertices, &r.indices, &r.drawCommands, &r.drawCommandTemplate,
-                      &r.visibleList, &r.stats, &r.statsReadback})
+                      &r.visibleList, &r.stats, &r.statsReadback, &r.terrainVertices, &r.terrainIndices})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     if (r.sampler)
@@ -169,14 +173,14 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     bindPipeline(ctx, cmd, r.sky, {r.frameUniforms});
     vkCmdDraw(cmd, 3, 1, 0, 0);
 
-    bindPipeline(ctx, cmd, r.ground, {r.frameUniforms});
-    vkCmdPushConstants(cmd, r.ground.layout, r.ground.pushConstantStages, 0, sizeof(glm::vec4),
-                       &r.groundCenterHalfSize);
-    vkCmdDraw(cmd, 6, 1, 0, 0);
+    bindPipeline(ctx, cmd, r.ground, {r.frameUniforms, r.terrainVertices});
+    vkCmdBindIndexBuffer(cmd, r.terrainIndices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, r.terrainIndexCount, 1, 0, 0, 0);
 
     bindPipeline(ctx, cmd, r.instance,
                  {r.frameUniforms, r.instances, r.visibleList, r.vertices,
                   Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
+    vkCmdPushConstants(cmd, r.instance.layout, r.instance.pushConstantStages, 0, sizeof(glm::vec4), &r.mirrorNormal);
     vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexedIndirect(cmd, r.drawCommands.buffer, 0, r.meshCount, sizeof(gpu::GpuDrawIndexedCommand));
     vkCmdEndRendering(cmd);
@@ -211,7 +215,7 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
     std::memcpy(draws.data(), static_cast<const char*>(r.statsReadback.mapped()) + sizeof(s),
                 draws.size() * sizeof(gpu::GpuDrawIndexedCommand));
-    out.trianglesDrawn = 2 + 1; // ground and sky
+    out.trianglesDrawn = r.terrainIndexCount / 3 + 1; // terrain and sky
     for (uint32_t m = 0; m < r.meshCount; ++m) {
         out.visiblePerMesh.push_back(draws[m].instanceCount);
         out.trianglesDrawn += uint64_t(draws[m].instanceCount) * r.meshTriangles[m];

@@ -41,22 +41,33 @@ struct FieldRenderer {
     Image atlas;
     VkSampler sampler = VK_NULL_HANDLE;
 
+    Buffer terrainVertices;
+    Buffer terrainIndices;
+
     uint32_t instanceCount = 0;
     uint32_t meshCount = 0;
     std::vector<uint32_t> meshTriangles; // per mesh
-    glm::vec4 groundCenterHalfSize{0.0f};
+    uint32_t terrainIndexCount = 0;
+    glm::vec4 mirrorNormal{0.0f, 0.0f, 1.0f, 0.0f}; // push constant of the instance pipeline
+};
+
+// What the field stands on and how its mirrored instances reflect.
+struct FieldScenery {
+    Mesh terrain;                        // world space; drawn as is
+    glm::vec2 windDirection{1.0f, 0.0f}; // (x, z) the clumps were simulated in
 };
 
 struct FieldStats {
     uint32_t visibleInstances = 0;
     uint32_t testedInstances = 0;
-    uint64_t trianglesDrawn = 0; // instances + ground + sky
+    uint64_t trianglesDrawn = 0; // instances + terrain + sky
     std::vector<uint32_t> visiblePerMesh;
 };
 
-// Every instance's `mesh` must index `meshes`; its boundingRadius should be that mesh's.
+// Every instance's `mesh` must index `meshes`; its boundingRadius must hold the mesh (as it moves).
 FieldRenderer createFieldRenderer(Context& context, std::span<const Mesh> meshes,
-                                  std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas);
+                                  std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
+                                  const FieldScenery& scenery);
 void destroyFieldRenderer(Context& context, FieldRenderer& renderer);
 
 // Writes the frame's uniform block. Call only when the previous frame's commands completed.

@@ -2,6 +2,7 @@
 // the core's upload/readback, timestamps and validation plumbing. ctest runs this binary at two
 // lavapipe vector widths (LP_NATIVE_VECTOR_WIDTH=128 and 256).
 #include "core/error.h"
+#include "field_placement.h"
 #include "mesh.h"
 #include "render/cull_reference.h"
 #include "render/field_renderer.h"
@@ -44,6 +45,10 @@ std::vector<Mesh> testMeshes() {
 }
 RgbaImage testAtlas() {
     return {4, 4, std::vector<uint8_t>(64, 200)};
+}
+
+FieldScenery testScenery() {
+    return {makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(20.0f), 5.0f, 2.0f), glm::vec2(1.0f, 0.0f)};
 }
 
 // Instances scattered in a box around the origin, some huge, some tiny, spread over three
@@ -112,7 +117,7 @@ TEST_F(Gpu, SubAllocatorSharesBlocksAndReturnsMemory) {
 
 TEST_F(Gpu, CullPassMatchesCpuReference) {
     std::vector<gpu::GpuInstance> instances = scatter(20011, 7); // not a multiple of the group size
-    FieldRenderer renderer = createFieldRenderer(*context, testMeshes(), instances, testAtlas());
+    FieldRenderer renderer = createFieldRenderer(*context, testMeshes(), instances, testAtlas(), testScenery());
     Offscreen offscreen = createOffscreen(*context, {64, 48});
 
     struct View {
@@ -190,7 +195,7 @@ TEST_F(Gpu, CullPassMatchesCpuReference) {
 
 TEST_F(Gpu, TimestampsBracketEveryPass) {
     std::vector<gpu::GpuInstance> instances = scatter(1000, 3);
-    FieldRenderer renderer = createFieldRenderer(*context, testMeshes(), instances, testAtlas());
+    FieldRenderer renderer = createFieldRenderer(*context, testMeshes(), instances, testAtlas(), testScenery());
     Offscreen offscreen = createOffscreen(*context, {32, 32});
     Camera camera;
     FrameTimings t = renderOffscreenFrame(

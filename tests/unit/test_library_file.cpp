@@ -148,7 +148,17 @@ TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
     EXPECT_NE(libraryInputHash(scene), libraryInputHash(other));
 
     Library lib = loadLibrary(a);
-    EXPECT_EQ(lib.field.size(), size_t(scene.testField.countX) * scene.testField.countZ);
+    // The field: voxel-packed Wang tiles, none overlapping, on the terrain.
+    EXPECT_GT(lib.field.size(), 4u);
+    EXPECT_EQ(lib.placement.stats.tilesX, scene.field.tilesX);
+    EXPECT_EQ(lib.placement.stats.overlapViolations, 0u);
+    EXPECT_EQ(lib.placement.stats.overlapViolations3d, 0u);
+    EXPECT_EQ(lib.placement.rocks.size(), size_t(scene.field.rockVariants));
+    const Terrain terrain(lib.placement.terrain);
+    for (const gpu::GpuInstance& inst : lib.field) {
+        EXPECT_NEAR(inst.positionScale.y, terrain.height(inst.positionScale.x, inst.positionScale.z), 1e-5f);
+        EXPECT_EQ(std::abs(inst.positionScale.w), 1.0f);
+    }
     ASSERT_EQ(lib.clumps.size(), 1u);
     const LibraryClump& clump = lib.clumps[0];
     EXPECT_GT(clump.mesh.indices.size(), 0u);

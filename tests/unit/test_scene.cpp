@@ -17,8 +17,8 @@ std::filesystem::path writeScene(const std::string& name, const std::string& tex
     return p;
 }
 
-const char* kMinimal = R"({"name": "t", "seed": 5, "testField": {"countX": 4, "countZ": 3, "spacing": 1.5},
-  "presets": {"ci": {"testField": {"countX": 2}}}})";
+const char* kMinimal = R"({"name": "t", "seed": 5, "field": {"tilesX": 4, "tilesY": 3, "tileSize": 5.5},
+  "presets": {"ci": {"field": {"tilesX": 2}}}})";
 
 std::string errorOf(const std::filesystem::path& p, const std::string& preset = "full") {
     try {
@@ -34,11 +34,12 @@ std::string errorOf(const std::filesystem::path& p, const std::string& preset = 
 TEST(Scene, PresetMergesOverBase) {
     auto p = writeScene("minimal.json", kMinimal);
     Scene full = loadScene(p, "full", std::nullopt);
-    EXPECT_EQ(full.testField.countX, 4u);
-    EXPECT_EQ(full.testField.countZ, 3u);
+    EXPECT_EQ(full.field.tilesX, 4u);
+    EXPECT_EQ(full.field.tilesY, 3u);
+    EXPECT_EQ(full.field.tileSize, 5.5f);
     Scene ci = loadScene(p, "ci", std::nullopt);
-    EXPECT_EQ(ci.testField.countX, 2u); // overridden
-    EXPECT_EQ(ci.testField.countZ, 3u); // kept from the base
+    EXPECT_EQ(ci.field.tilesX, 2u); // overridden
+    EXPECT_EQ(ci.field.tilesY, 3u); // kept from the base
     EXPECT_EQ(ci.seed, 5u);
     Scene seeded = loadScene(p, "ci", 99);
     EXPECT_EQ(seeded.seed, 99u);
@@ -49,23 +50,26 @@ TEST(Scene, BundledDefaultSceneLoadsInBothPresets) {
     for (const char* preset : kPresetNames) {
         Scene s = loadScene(MEADOW_SOURCE_DIR "/data/scenes/irises.json", preset, std::nullopt);
         EXPECT_EQ(s.name, "irises");
-        EXPECT_GT(s.testField.countX * s.testField.countZ, 0u);
+        EXPECT_GT(s.field.tilesX * s.field.tilesY, 0u);
     }
 }
 
 TEST(Scene, ErrorsNameTheFileAndTheKey) {
     EXPECT_NE(errorOf(writeScene("bad-json.json", "{ nope")).find("invalid JSON"), std::string::npos);
-    EXPECT_NE(errorOf(writeScene("missing.json", R"({"name": "t", "seed": 1})")).find("testField is missing"),
+    EXPECT_NE(errorOf(writeScene("missing.json", R"({"name": "t", "seed": 1})")).find("field is missing"),
               std::string::npos);
     std::string typo = errorOf(writeScene("typo.json", R"({"name": "t", "seed": 1, "tesField": {}})"));
     EXPECT_NE(typo.find("typo.json"), std::string::npos) << typo;
     EXPECT_NE(typo.find("tesField is not a known key"), std::string::npos) << typo;
-    std::string range = errorOf(
-        writeScene("range.json", R"({"name": "t", "seed": 1, "testField": {"countX": 0, "countZ": 1, "spacing": 1}})"));
-    EXPECT_NE(range.find("testField.countX must be between 1 and 4096"), std::string::npos) << range;
-    std::string type = errorOf(writeScene(
-        "type.json", R"({"name": "t", "seed": 1, "testField": {"countX": 1, "countZ": 1, "spacing": "far"}})"));
-    EXPECT_NE(type.find("testField.spacing must be a number"), std::string::npos) << type;
+    std::string range =
+        errorOf(writeScene("range.json", R"({"name": "t", "seed": 1, "field": {"tilesX": 0, "tilesY": 1}})"));
+    EXPECT_NE(range.find("field.tilesX must be between 1 and 1024"), std::string::npos) << range;
+    std::string type = errorOf(
+        writeScene("type.json", R"({"name": "t", "seed": 1, "field": {"tilesX": 1, "tilesY": 1, "tileSize": "far"}})"));
+    EXPECT_NE(type.find("field.tileSize must be a number"), std::string::npos) << type;
+    std::string terrain = errorOf(writeScene(
+        "terrain.json", R"({"name": "t", "seed": 1, "field": {"tilesX": 1, "tilesY": 1, "terrain": {"height": 2}}})"));
+    EXPECT_NE(terrain.find("field.terrain.height is not a known key"), std::string::npos) << terrain;
     EXPECT_NE(errorOf(writeScene("name.json", R"({"name": "../x", "seed": 1})")).find("name may hold only"),
               std::string::npos);
     EXPECT_NE(errorOf(writeScene("nofile.json", kMinimal), "medium").find("unknown preset"), std::string::npos);
@@ -77,7 +81,7 @@ TEST(Scene, SkyTakesPresetDefaultsAndOverrides) {
     EXPECT_EQ(loadScene(base, "ci", std::nullopt).sky.params.frames, 48u);
     EXPECT_EQ(loadScene(base, "full", std::nullopt).sky.params.frames, 288u);
     EXPECT_TRUE(loadScene(base, "full", std::nullopt).sky.maps.empty());
-    auto p = writeScene("sky.json", R"({"name": "t", "seed": 5, "testField": {"countX": 1, "countZ": 1, "spacing": 1},
+    auto p = writeScene("sky.json", R"({"name": "t", "seed": 5, "field": {"tilesX": 1, "tilesY": 1},
       "sky": {"latitude": -33.9, "dayOfYear": 355, "turbidity": 2.5, "frames": 96, "imageWidth": 32,
               "maps": ["skies/dawn.exr", "skies/noon.hdr"]}})");
     Scene s = loadScene(p, "full", std::nullopt);
@@ -93,7 +97,7 @@ TEST(Scene, SkyTakesPresetDefaultsAndOverrides) {
 
 TEST(Scene, SkyErrorsNameTheKey) {
     auto scene = [](const std::string& sky) {
-        return R"({"name": "t", "seed": 5, "testField": {"countX": 1, "countZ": 1, "spacing": 1}, "sky": )" + sky + "}";
+        return R"({"name": "t", "seed": 5, "field": {"tilesX": 1, "tilesY": 1}, "sky": )" + sky + "}";
     };
     EXPECT_NE(errorOf(writeScene("s1.json", scene(R"({"latitude": 95})"))).find("sky.latitude must be between"),
               std::string::npos);

@@ -31,7 +31,8 @@ TEST(SpirvReflect, TonemapUsesStorageImages) {
 TEST(SpirvReflect, GraphicsStagesAndPushConstants) {
     EXPECT_EQ(reflectShader(findShader("instance.vert"), "v").stage, VK_SHADER_STAGE_VERTEX_BIT);
     EXPECT_EQ(reflectShader(findShader("instance.frag"), "f").stage, VK_SHADER_STAGE_FRAGMENT_BIT);
-    EXPECT_TRUE(reflectShader(findShader("ground.vert"), "g").usesPushConstants);
+    EXPECT_TRUE(reflectShader(findShader("instance.vert"), "v").usesPushConstants);
+    EXPECT_FALSE(reflectShader(findShader("ground.vert"), "g").usesPushConstants);
     EXPECT_TRUE(reflectShader(findShader("sky.vert"), "s").bindings.empty());
 }
 
