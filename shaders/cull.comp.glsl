@@ -32,7 +32,7 @@ void main() {
         return;
 
     GpuInstance inst = instances[index];
-    float scale = inst.positionScale.w;
+    float scale = abs(inst.positionScale.w); // negative: mirrored (instance.vert.glsl), same sphere
     // The sphere is centred half a radius above the base: the mesh grows up from its base.
     precise vec3 center = inst.positionScale.xyz + vec3(0.0, inst.boundingRadius * scale * 0.5, 0.0);
     precise float radius = inst.boundingRadius * scale;

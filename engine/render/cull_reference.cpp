@@ -1,6 +1,7 @@
 #include "render/cull_reference.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace meadow {
 namespace {
@@ -11,7 +12,7 @@ struct Sphere {
 };
 
 Sphere boundingSphere(const gpu::GpuInstance& inst) {
-    float scale = inst.positionScale.w;
+    float scale = std::abs(inst.positionScale.w); // negative: mirrored, the same sphere
     // Same expression order as cull.comp.glsl.
     glm::vec3 center = glm::vec3(inst.positionScale) + glm::vec3(0.0f, inst.boundingRadius * scale * 0.5f, 0.0f);
     return {center, inst.boundingRadius * scale};

@@ -37,7 +37,8 @@ struct GpuFrame {
 
 // One plant instance (storage buffer, read by cull and the vertex shader).
 struct GpuInstance {
-    vec4 positionScale;   // xyz world position of the base, w uniform scale
+    vec4 positionScale;   // xyz world position of the base, w uniform scale; negative: mirrored about the
+                          // vertical plane holding the wind direction (instance.vert.glsl)
     float yaw;            // radians about +y
     float boundingRadius; // of the mesh's sphere (unscaled), centred half a radius above the base
     float tint;           // per-instance colour variation in [0, 1]
