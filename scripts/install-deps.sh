@@ -12,8 +12,8 @@ packages=(
   libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev openimageio-tools
   # precompute: linear algebra (PCA), parallel loops
   libeigen3-dev libtbb-dev
-  # precompute: ray casting for the light-transfer bake
-  libembree-dev
+  # precompute: ray casting for the light-transfer bake, vertex-cache optimisation of the LODs
+  libembree-dev libmeshoptimizer-dev
   # tests: GoogleTest, an X server and a window manager (so minimising is real) for window tests
   libgtest-dev xvfb xauth openbox python3
 )
