@@ -203,7 +203,8 @@ int runBench(const Args& argv) {
             gpuMs[label] = percentile(values, 0.5);
         j["gpuMs"] = gpuMs;
         j["cpuMsPerFrame"] = percentile(cpuMs, 0.5);
-        j["uploadBytesPerFrame"] = sizeof(gpu::GpuFrame);
+        // The uniform block, and the instance pipeline's push constant recorded into each frame.
+        j["uploadBytesPerFrame"] = sizeof(gpu::GpuFrame) + sizeof(renderer.mirrorNormal);
         j["trianglesPerFrame"] = stats.trianglesDrawn;
         j["instancesPerLod"] = {stats.visibleInstances};
         j["instancesPerClump"] = stats.visiblePerMesh;
