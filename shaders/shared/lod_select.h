@@ -1,0 +1,103 @@
+// The choice of level of detail (DESIGN.md 2.8), one function body compiled as C++ (tests, the
+// CPU-driven path) and as GLSL (the cull pass), like motion_step.h.
+//
+// An instance's size on screen, r (its bounding sphere's projected radius, in pixels), picks a
+// continuous LOD coordinate x in [0, kLodSelectCount - 1]: x = i on LOD i's plateau, and across
+// the band around each switch radius x slides linearly from i to i + 1, during which the instance
+// is drawn in both LODs with complementary dither masks (a crossfade), so no LOD ever pops in.
+//   - Switch radii are jittered per instance (scaled by 1 + jitter (u - 1/2), u from the
+//     instance's hash), so the crossfades of a field do not form a visible ring.
+//   - Hysteresis: inside a band, x stays at the instance's previous x while the new one differs
+//     by less than `hysteresis`, so a camera hovering at a switch distance does not make the
+//     dither masks shimmer; on a plateau x is exact, so nothing stays half-faded.
+// The caller keeps x per instance from frame to frame (GpuLodState).
+#ifndef MEADOW_LOD_SELECT_H
+#define MEADOW_LOD_SELECT_H
+
+#ifdef __cplusplus
+#include <cmath>
+#include <cstdint>
+namespace meadow::gpu {
+using uint = std::uint32_t;
+#define MEADOW_LOD_CONST inline constexpr uint
+#define MEADOW_LOD_FN inline
+using std::abs;
+using std::floor;
+using std::max;
+using std::min;
+inline float clamp(float x, float lo, float hi) {
+    return x < lo ? lo : (x > hi ? hi : x);
+}
+#else
+#define MEADOW_LOD_CONST const uint
+#define MEADOW_LOD_FN
+#endif
+
+MEADOW_LOD_CONST kLodSelectCount = 5; // LODs 0 .. 4
+
+// std140/std430-compatible: three vec4-sized rows.
+struct GpuLodParams {
+    float switchRadius[4]; // px: below switchRadius[i] LOD i + 1 replaces LOD i; descending
+    float band;            // half-width of each crossfade band, relative to its radius (0 .. 0.5)
+    float jitter;          // relative spread of the switch radii between instances (0 .. 0.5)
+    float hysteresis;      // in LOD coordinate units (0 .. 0.5)
+    float pad;
+};
+
+struct GpuLodChoice {
+    uint lod;     // drawn with weight 1 - fade
+    uint fadeLod; // drawn with weight fade (lod + 1 while crossfading, else lod)
+    float fade;   // 0 .. 1
+    float x;      // the coordinate to keep for the next frame
+};
+
+// The continuous coordinate of a screen radius r for an instance whose random number is u in
+// [0, 1). Non-increasing in r.
+MEADOW_LOD_FN float lodCoordinate(GpuLodParams p, float r, float u) {
+    float scale = 1.0f + p.jitter * (u - 0.5f);
+    float x = 0.0f;
+    for (uint i = 0u; i < kLodSelectCount - 1u; ++i) {
+        float t = p.switchRadius[i] * scale;
+        // 0 above the band, 1 below it, linear across it.
+        x += clamp((t * (1.0f + p.band) - r) / (2.0f * p.band * t), 0.0f, 1.0f);
+    }
+    return x;
+}
+
+MEADOW_LOD_FN GpuLodChoice lodSelect(GpuLodParams p, float r, float u, float previousX) {
+    float target = lodCoordinate(p, r, u);
+    float x = target;
+    bool plateau = target == floor(target);
+    if (!plateau && abs(target - previousX) < p.hysteresis)
+        x = previousX;
+    GpuLodChoice c;
+    c.x = x;
+    c.lod = uint(floor(x));
+    c.fade = x - floor(x);
+    c.fadeLod = c.fade > 0.0f ? min(c.lod + 1u, kLodSelectCount - 1u) : c.lod;
+    return c;
+}
+
+// A 4 x 4 ordered-dither threshold in (0, 1) for a pixel (Bayer 1973). A crossfading instance
+// draws `lod` where threshold >= fade and `fadeLod` where threshold < fade: the two masks are
+// complementary, so every pixel is covered by exactly one of them.
+MEADOW_LOD_FN float lodDitherThreshold(uint px, uint py) {
+    uint x = px & 3u, y = py & 3u;
+    uint xy = x ^ y;
+    // Bit-interleaved Bayer index: 16 distinct values 0..15.
+    uint bayer = ((xy & 1u) << 3u) | ((x & 1u) << 2u) | ((xy & 2u) << 0u) | ((x & 2u) >> 1u);
+    return (float(bayer) + 0.5f) / 16.0f;
+}
+
+MEADOW_LOD_FN bool lodDitherKeeps(bool isFadeLod, float fade, uint px, uint py) {
+    float t = lodDitherThreshold(px, py);
+    return isFadeLod ? t < fade : t >= fade;
+}
+
+#ifdef __cplusplus
+static_assert(sizeof(GpuLodParams) == 32, "GpuLodParams must stay 8 packed floats");
+} // namespace meadow::gpu
+#endif
+#undef MEADOW_LOD_CONST
+#undef MEADOW_LOD_FN
+#endif
