@@ -1,10 +1,12 @@
 #include "placement_fixtures.h"
 
+#include "core/error.h"
 #include "iris.h"
 #include "rock.h"
 
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 
 namespace meadow::test {
 namespace {
@@ -67,6 +69,15 @@ TileFillParams defaultFillParams() {
 const WangTileFill& defaultFill() {
     static const WangTileFill fill = fillWangTiles(irisVolumes(), rockVolumes(), defaultFillParams());
     return fill;
+}
+
+void expectError(const std::function<void()>& call, const std::string& fragment) {
+    try {
+        call();
+        ADD_FAILURE() << "no error; expected one mentioning '" << fragment << "'";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
 }
 
 } // namespace meadow::test

@@ -9,7 +9,9 @@
 #include "placement/tile_fill.h"
 #include "plant.h"
 
+#include <functional>
 #include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 namespace meadow::test {
@@ -31,5 +33,8 @@ const std::vector<SweptVolume>& rockVolumes();
 // The default fill of the complete tile set from irisVolumes and rockVolumes (seed 7).
 TileFillParams defaultFillParams();
 const WangTileFill& defaultFill();
+
+// Runs `call` and expects a meadow::Error whose message contains `fragment`.
+void expectError(const std::function<void()>& call, const std::string& fragment);
 
 } // namespace meadow::test

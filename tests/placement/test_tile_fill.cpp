@@ -18,6 +18,7 @@ namespace {
 
 using test::defaultFill;
 using test::defaultFillParams;
+using test::expectError;
 using test::irisVolumes;
 using test::rockVolumes;
 
@@ -220,15 +221,6 @@ TEST(TileFill, DartBudget) {
     for (uint32_t c : quick.clumpsPerTile())
         clumps += c;
     EXPECT_LT(clumps * 2, size_t(defaultFill().clumpDensity() * 16.0 * 36.0));
-}
-
-void expectError(const std::function<void()>& call, const std::string& fragment) {
-    try {
-        call();
-        ADD_FAILURE() << "no error; expected one mentioning '" << fragment << "'";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-    }
 }
 
 TEST(TileFill, BadParametersGiveClearErrors) {

@@ -21,6 +21,7 @@ namespace meadow {
 namespace {
 
 using Cell = std::tuple<int, int, int>;
+using test::expectError;
 std::set<Cell> cellSet(const SweptVolume& volume) {
     std::set<Cell> out;
     for (const glm::ivec3& c : volume.cells())
@@ -302,15 +303,6 @@ TEST(SelectSweptFrames, LeansTowardTheStrongestLevel) {
     EXPECT_THROW(selectSweptFrames(std::vector<uint32_t>{}, 10, 0.5f), Error);
     EXPECT_THROW(selectSweptFrames(std::vector<uint32_t>{5, 0}, 10, 0.5f), Error);
     EXPECT_THROW(selectSweptFrames(levels, 10, std::nanf("")), Error);
-}
-
-void expectError(const std::function<void()>& call, const std::string& fragment) {
-    try {
-        call();
-        ADD_FAILURE() << "no error; expected one mentioning '" << fragment << "'";
-    } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-    }
 }
 
 TEST(Voxelize, BadInputGivesClearErrors) {
