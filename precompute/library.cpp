@@ -20,7 +20,7 @@ namespace meadow {
 namespace {
 
 // Bump when what precompute produces changes for the same inputs.
-constexpr uint32_t kPrecomputeVersion = 7;
+constexpr uint32_t kPrecomputeVersion = 8;
 
 std::string hex(uint64_t v) {
     char buf[17];
@@ -287,6 +287,50 @@ ClumpLight readLight(ByteReader& r, const LibraryClump& clump, const std::string
     return light;
 }
 
+// --- levels of detail -----------------------------------------------------------------------
+
+void writeLods(ByteWriter& w, const std::array<ClumpLod, kLodCount>& lods) {
+    for (const ClumpLod& lod : lods) {
+        w.u32s(lod.vertices);
+        w.u32s(lod.indices);
+        const LodError& e = lod.error;
+        for (const SurfaceDistance* d : {&e.rest, &e.deformed, &e.light, &e.motion}) {
+            w.f32(float(d->hausdorff));
+            w.f32(float(d->rms));
+        }
+        w.u32(e.fullSamples);
+        w.u32(e.lodSamples);
+    }
+}
+
+void readLods(ByteReader& r, LibraryClump& clump, const std::string& where) {
+    auto fail = [&](const std::string& what) { return Error(where + ": clump " + clump.name + ": " + what); };
+    const size_t meshVertices = clump.mesh.vertices.size();
+    for (uint32_t l = 0; l < kLodCount; ++l) {
+        ClumpLod& lod = clump.lods[l];
+        lod.vertices = r.u32s();
+        lod.indices = r.u32s();
+        LodError& e = lod.error;
+        for (SurfaceDistance* d : {&e.rest, &e.deformed, &e.light, &e.motion}) {
+            d->hausdorff = r.f32();
+            d->rms = r.f32();
+            if (!std::isfinite(d->hausdorff) || !std::isfinite(d->rms))
+                throw fail("LOD " + std::to_string(l) + " has a non-finite error");
+        }
+        e.fullSamples = r.u32();
+        e.lodSamples = r.u32();
+        if (lod.vertices.empty() || lod.indices.empty() || lod.indices.size() % 3 != 0)
+            throw fail("LOD " + std::to_string(l) + " is empty or not a triangle list");
+        for (uint32_t v : lod.vertices)
+            if (v >= meshVertices)
+                throw fail("LOD " + std::to_string(l) + " names vertex " + std::to_string(v) + " of " +
+                           std::to_string(meshVertices));
+        for (uint32_t i : lod.indices)
+            if (i >= lod.vertices.size())
+                throw fail("LOD " + std::to_string(l) + " has a triangle index out of range");
+    }
+}
+
 // --- sky --------------------------------------------------------------------------------------
 
 void writeVec3(ByteWriter& w, const glm::vec3& v) {
@@ -490,6 +534,26 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     }
     file.sections["LITE"] = light.take();
 
+    say("levels of detail: %u per clump", kLodCount);
+    std::vector<std::array<ClumpLod, kLodCount>> lods(motions.size());
+    tbb::parallel_for(size_t(0), motions.size(), [&](size_t i) {
+        lods[i] = buildClumpLods(motions[i], lights[i], clumpRenderMesh(motions[i]), testSky, scene.lod);
+    });
+    ByteWriter lodBytes;
+    lodBytes.u32(uint32_t(lods.size()));
+    for (size_t i = 0; i < lods.size(); ++i) {
+        std::string line;
+        for (const ClumpLod& lod : lods[i]) {
+            char part[96];
+            std::snprintf(part, sizeof(part), " %zu (%.1f mm)", lod.indices.size() / 3,
+                          lod.error.deformed.rms * 1000.0);
+            line += part;
+        }
+        say("clump %s LOD triangles (RMS distance over frames):%s", motions[i].clump.name.c_str(), line.c_str());
+        writeLods(lodBytes, lods[i]);
+    }
+    file.sections["LODS"] = lodBytes.take();
+
     std::vector<Mesh> meshes;
     for (const ClumpMotion& m : motions)
         meshes.push_back(clumpRenderMesh(m));
@@ -596,6 +660,14 @@ Library loadLibrary(const std::filesystem::path& path) {
             throw Error(where + ": section 'LITE' does not hold one entry per clump");
         for (LibraryClump& clump : lib.clumps)
             clump.light = readLight(r, clump, where + ": section 'LITE'");
+        r.expectEnd();
+    }
+    {
+        ByteReader r(section("LODS"), where + ": section 'LODS'");
+        if (r.u32() != lib.clumps.size())
+            throw Error(where + ": section 'LODS' does not hold one entry per clump");
+        for (LibraryClump& clump : lib.clumps)
+            readLods(r, clump, where + ": section 'LODS'");
         r.expectEnd();
     }
     {

@@ -6,6 +6,7 @@
 //          its motion graph and the statistics of its simulation
 //   "ATLS" the plants' texture atlas: u32 width, u32 height, 8-bit sRGB RGBA texels
 //   "TFLD" the field's clumps: u32 count, then per instance gpu::GpuInstance (4 + 4 words)
+//   "LODS" per clump and LOD: original vertex indices, triangles, errors against the full mesh
 //   "ROCK" the rocks: meshes, static light transfer, instances (library_field.h)
 //   "PLCE" the terrain, the Wang tiles' and the field's placement figures
 //   "LITE" per clump: SH order, the vertex and ground appearance models (mean, basis, per-frame
@@ -15,6 +16,7 @@
 #pragma once
 
 #include "clump_light.h"
+#include "clump_lod.h"
 #include "clump_motion.h"
 #include "gpu_types.h"
 #include "library_field.h"
@@ -31,9 +33,10 @@ namespace meadow {
 struct LibraryClump {
     std::string name;
     uint32_t plants = 0;
-    Mesh mesh;          // the mean pose, atlas UVs
-    MotionBasis motion; // x̄ + U q per rod block; frames over all levels
-    ClumpLight light;   // transfer of the clump and its ground over the motion (timings not stored)
+    Mesh mesh;                            // the mean pose, atlas UVs
+    MotionBasis motion;                   // x̄ + U q per rod block; frames over all levels
+    ClumpLight light;                     // transfer of the clump and its ground over the motion (timings not stored)
+    std::array<ClumpLod, kLodCount> lods; // LOD 0 is the full mesh, reordered for the vertex cache
     MotionGraph graph;
     std::vector<LevelStats> levels;
 };

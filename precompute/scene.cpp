@@ -86,9 +86,9 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     } catch (const json::parse_error& e) {
         throw Error("scene " + path.string() + ": invalid JSON: " + e.what());
     }
-    check.onlyKeys(
-        doc, "",
-        {"name", "description", "seed", "presets", "field", "camera", "timeOfDay", "plants", "wind", "motion", "sky"});
+    check.onlyKeys(doc, "",
+                   {"name", "description", "seed", "presets", "field", "camera", "timeOfDay", "plants", "wind",
+                    "motion", "sky", "light", "lod"});
 
     // Merge the preset's overrides over the base description.
     json resolved = doc;
@@ -273,6 +273,24 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
                         "light.groundGridResolution", 2, 256);
         l.bake.groundRaysPerPoint = check.count(light.value("groundRaysPerPoint", json(l.bake.groundRaysPerPoint)),
                                                 "light.groundRaysPerPoint", 8, 65536);
+    }
+
+    if (resolved.contains("lod")) {
+        const json& lod = resolved["lod"];
+        check.onlyKeys(lod, "lod", {"triangleFractions"});
+        if (lod.contains("triangleFractions")) {
+            const json& f = lod["triangleFractions"];
+            if (!f.is_array() || f.size() != scene.lod.triangleFractions.size())
+                check.fail("lod.triangleFractions", "must be an array of 5 fractions of the full mesh");
+            for (size_t i = 0; i < f.size(); ++i) {
+                const std::string key = "lod.triangleFractions[" + std::to_string(i) + "]";
+                scene.lod.triangleFractions[i] = check.number(f[i], key, 1e-4f, 1.0f);
+                if (i == 0 && scene.lod.triangleFractions[0] != 1.0f)
+                    check.fail(key, "must be 1: LOD 0 is the full mesh");
+                if (i > 0 && scene.lod.triangleFractions[i] > scene.lod.triangleFractions[i - 1])
+                    check.fail(key, "must not exceed the fraction before it");
+            }
+        }
     }
 
     scene.resolved = std::move(resolved);

@@ -6,6 +6,7 @@
 
 #include "sky/sky_day.h"
 #include "transfer/transfer.h"
+#include <array>
 #include <cstdint>
 #include <filesystem>
 
@@ -76,6 +77,13 @@ struct LightParams {
     uint32_t maxAppearanceModes = 16;
 };
 
+// Levels of detail (DESIGN.md 2.8): each LOD's triangle budget as a fraction of the full mesh.
+// The default's last LOD keeps ~30 triangles per iris, one or two per leaf and petal: below that
+// whole leaves and flowers must go, which shows as a change of colour and density at distance.
+struct LodParams {
+    std::array<float, 5> triangleFractions{1.0f, 1.0f / 3.0f, 1.0f / 10.0f, 1.0f / 20.0f, 1.0f / 30.0f};
+};
+
 struct Scene {
     std::filesystem::path path;
     std::string name;
@@ -89,6 +97,7 @@ struct Scene {
     MotionParams motion;
     SkySource sky;
     LightParams light;
+    LodParams lod;
     nlohmann::json resolved; // the scene after the preset merge, with the effective seed
 };
 

@@ -80,11 +80,24 @@ int runInspect(const Args& argv) {
         clump["name"] = c.name;
         clump["plants"] = c.plants;
         // Levels of detail by simplification are later work: LOD0, the full mesh, is all there is.
-        clump["lods"] = {{{"vertices", c.mesh.vertices.size()},
-                          {"triangles", c.mesh.indices.size() / 3},
-                          {"motionModes", c.motion.lodModes[0]},
-                          // Per-vertex first-order transfer (mean and displacement gradient), no modes.
-                          {"appearanceModes", 0}}};
+        clump["lods"] = nlohmann::json::array();
+        for (uint32_t l = 0; l < kLodCount; ++l) {
+            const LodError& e = c.lods[l].error;
+            clump["lods"].push_back({{"vertices", c.lods[l].vertices.size()},
+                                     {"triangles", c.lods[l].indices.size() / 3},
+                                     {"motionModes", c.motion.lodModes[l]},
+                                     {"maxModesPerVertex", c.motion.maxBlockRank(l)},
+                                     // Per-vertex first-order transfer (mean and displacement gradient), no modes.
+                                     {"appearanceModes", 0},
+                                     {"error",
+                                      {{"hausdorffRest", e.rest.hausdorff},
+                                       {"rmsRest", e.rest.rms},
+                                       {"hausdorffDeformed", e.deformed.hausdorff},
+                                       {"rmsDeformed", e.deformed.rms},
+                                       {"lightRms", e.light.rms},
+                                       {"motionRms", e.motion.rms},
+                                       {"motionPcaRelError", c.motion.relativeErrorPerMode[c.motion.lodModes[l]]}}}});
+        }
         const MotionGraph& g = c.graph;
         uint32_t levelsConnected = 0;
         for (uint8_t connected : g.levelStronglyConnected)

@@ -31,7 +31,9 @@ namespace meadow::lod_detail {
 // Layout of one quadric in a flat double array: A (xx, xy, xz, yy, yz, zz), b (3), c, W, then
 // per attribute (G_j (3), D_j).
 inline constexpr size_t kQuadricFixed = 11;
-inline size_t quadricStride(uint32_t attributeCount) { return kQuadricFixed + 4 * size_t(attributeCount); }
+inline size_t quadricStride(uint32_t attributeCount) {
+    return kQuadricFixed + 4 * size_t(attributeCount);
+}
 
 // Adds the quadric of one face (corners p[0..2], corner attributes s[k][0..m-1]) with weight
 // `area` to q. Faces whose attribute system is singular (near-zero area) add their plane only.
@@ -49,6 +51,8 @@ void addQuadric(std::span<double> q, std::span<const double> other);
 double evaluateQuadric(std::span<const double> q, const glm::dvec3& p, const float* s, uint32_t attributeCount);
 
 // W: the face area the quadric stands for.
-inline double quadricArea(std::span<const double> q) { return q[10]; }
+inline double quadricArea(std::span<const double> q) {
+    return q[10];
+}
 
 } // namespace meadow::lod_detail

@@ -68,7 +68,9 @@ struct CandidateOrder {
     }
 };
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 void validateInput(const SimplifyInput& input) {
     const size_t n = input.positions.size();
@@ -141,7 +143,7 @@ struct MeshSimplifier::State {
 
     // Per vertex (wedge).
     std::vector<uint32_t> positionOf;
-    std::vector<uint32_t> group; // empty: no groups
+    std::vector<uint32_t> group;   // empty: no groups
     std::vector<float> attributes; // attributeCount per vertex, already weighted
     std::vector<double> quadrics;  // stride per vertex
     std::vector<std::vector<uint32_t>> vertexTriangles;
@@ -181,12 +183,12 @@ struct MeshSimplifier::State {
 
     void weldPositions(const SimplifyInput& input);
     void classifyPositions();
-    void buildQuadrics(const SimplifyInput& input);
+    void buildQuadrics();
     void neighbours(uint32_t p, std::vector<uint32_t>& out) const;
     bool mapWedges(uint32_t p, uint32_t r);
     uint32_t edgeTriangleCount(uint32_t p, uint32_t r) const;
     bool isValid(uint32_t p, uint32_t r);
-    double cost(uint32_t p, uint32_t r);
+    double cost(uint32_t r);
     void updateCandidate(uint32_t p);
     void rescan();
     void collapse(uint32_t p, uint32_t r);
@@ -245,7 +247,7 @@ MeshSimplifier::State::State(const SimplifyInput& input, const SimplifyOptions& 
     std::iota(collapsedInto.begin(), collapsedInto.end(), 0u);
 
     classifyPositions();
-    buildQuadrics(input);
+    buildQuadrics();
     rescan();
 }
 
@@ -310,6 +312,10 @@ void MeshSimplifier::State::classifyPositions() {
         for (int k = 0; k < 3; ++k)
             surfaceNormal[positionAt(t, k)] += n;
     }
+    for (glm::dvec3& n : surfaceNormal) {
+        const double length = glm::length(n);
+        n = length > 0.0 ? n / length : glm::dvec3(0.0);
+    }
     std::sort(edges.begin(), edges.end());
     std::vector<uint32_t> borderEdges(point.size(), 0);
     for (size_t i = 0; i < edges.size();) {
@@ -335,8 +341,7 @@ void MeshSimplifier::State::classifyPositions() {
     }
 }
 
-void MeshSimplifier::State::buildQuadrics(const SimplifyInput& input) {
-    (void)input;
+void MeshSimplifier::State::buildQuadrics() {
     quadrics.assign(size_t(vertexCount) * stride, 0.0);
     for (uint32_t t = 0; t < triangles.size(); ++t) {
         if (!triangleAlive[t])
@@ -413,14 +418,13 @@ bool MeshSimplifier::State::mapWedges(uint32_t p, uint32_t r) {
     return !wedgeMap.empty();
 }
 
-double MeshSimplifier::State::cost(uint32_t p, uint32_t r) {
+double MeshSimplifier::State::cost(uint32_t r) {
     double total = 0.0;
     for (const auto& [w, target] : wedgeMap)
         total += evaluateQuadric(quadric(w), point[r], attributesOf(target), attributeCount);
     for (uint32_t v : wedges[r])
         if (!vertexTriangles[v].empty())
             total += evaluateQuadric(quadric(v), point[r], attributesOf(v), attributeCount);
-    (void)p;
     return total;
 }
 
@@ -492,8 +496,8 @@ bool MeshSimplifier::State::isValid(uint32_t p, uint32_t r) {
             if (hasPosition(t, r))
                 continue;
             std::array<uint32_t, 3> corners{positionAt(t, 0), positionAt(t, 1), positionAt(t, 2)};
-            const glm::dvec3 before = glm::cross(point[corners[1]] - point[corners[0]],
-                                                 point[corners[2]] - point[corners[0]]);
+            const glm::dvec3 before =
+                glm::cross(point[corners[1]] - point[corners[0]], point[corners[2]] - point[corners[0]]);
             for (uint32_t& c : corners)
                 if (c == p)
                     c = r;
@@ -506,7 +510,8 @@ bool MeshSimplifier::State::isValid(uint32_t p, uint32_t r) {
                 return false;
             if (glm::dot(after, before) <= double(options.minNormalDot) * doubleArea * glm::length(before))
                 return false;
-            const glm::dvec3 surface = surfaceNormal[corners[0]] + surfaceNormal[corners[1]] + surfaceNormal[corners[2]];
+            const glm::dvec3 surface =
+                surfaceNormal[corners[0]] + surfaceNormal[corners[1]] + surfaceNormal[corners[2]];
             if (glm::dot(after, surface) <= 0.0)
                 return false;
             // No duplicate: r must not already have a triangle on the same three points.
@@ -532,7 +537,7 @@ void MeshSimplifier::State::updateCandidate(uint32_t p) {
             continue;
         if (!mapWedges(p, r))
             continue;
-        options.emplace_back(cost(p, r), r);
+        options.emplace_back(cost(r), r);
     }
     std::sort(options.begin(), options.end());
     for (const auto& [c, r] : options) {
@@ -550,10 +555,14 @@ void MeshSimplifier::State::rescan() {
 }
 
 void MeshSimplifier::State::collapse(uint32_t p, uint32_t r) {
+    // The surface this collapse answers for: the same quadrics cost() evaluates.
     double area = 0.0;
     for (const auto& [w, target] : wedgeMap)
-        area += quadricArea(quadric(w)) + quadricArea(quadric(target));
-    const double c = cost(p, r);
+        area += quadricArea(quadric(w));
+    for (uint32_t v : wedges[r])
+        if (!vertexTriangles[v].empty())
+            area += quadricArea(quadric(v));
+    const double c = cost(r);
     if (area > 0.0)
         maxError = std::max(maxError, std::sqrt(c / area));
 
@@ -586,9 +595,11 @@ void MeshSimplifier::State::collapse(uint32_t p, uint32_t r) {
         updateCandidate(q);
 }
 
-// The fallback's last step: whole connected components, least original area first (the area
-// each component's quadrics stand for, so a blade collapsed to one triangle still counts as the
-// blade), until the target is met.
+// The fallback's last step: whole connected components, until the target is met. Greedy on
+// surface kept per triangle spent: the component that stands for the least original area per
+// triangle goes first (the area its quadrics stand for, so a blade collapsed to one triangle still
+// counts as the blade). On an iris clump that removes style arms, then petals, then stems (a
+// tube spends six triangles on a sliver of silhouette), and leaves last.
 void MeshSimplifier::State::removeComponents(uint32_t target) {
     std::vector<uint32_t> parent(point.size());
     std::iota(parent.begin(), parent.end(), 0u);
@@ -619,7 +630,8 @@ void MeshSimplifier::State::removeComponents(uint32_t target) {
         if (triangleCount[p] > 0 && find(p) == p)
             roots.push_back(p);
     std::sort(roots.begin(), roots.end(), [&](uint32_t a, uint32_t b) {
-        return area[a] != area[b] ? area[a] < area[b] : a < b;
+        const double da = area[a] / triangleCount[a], db = area[b] / triangleCount[b];
+        return da != db ? da < db : a < b;
     });
     std::vector<uint8_t> removed(point.size(), 0);
     for (uint32_t root : roots) {
@@ -707,7 +719,7 @@ SimplifiedMesh MeshSimplifier::simplifyTo(uint32_t targetTriangles) {
         const uint32_t p = top.position, r = top.target;
         if (top.version != s.version[p] || !s.alive[p] || !s.alive[r])
             continue;
-        if (!s.mapWedges(p, r) || !s.isValid(p, r) || s.cost(p, r) != top.cost) {
+        if (!s.mapWedges(p, r) || !s.isValid(p, r) || s.cost(r) != top.cost) {
             s.updateCandidate(p);
             continue;
         }

@@ -191,6 +191,15 @@ TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
     EXPECT_GT(light.vertexNoise, 0.0);
     EXPECT_GT(light.vertexHeldOutError, 0.0);
     EXPECT_LT(light.vertexHeldOutError, 0.5);
+    // Five levels of detail, each fewer triangles than the one before, errors growing, LOD 0 the
+    // full mesh.
+    EXPECT_EQ(clump.lods[0].indices.size(), clump.mesh.indices.size());
+    EXPECT_LT(clump.lods[0].error.deformed.rms, 1e-6); // metres: sampling the same surface twice
+    for (uint32_t l = 1; l < kLodCount; ++l) {
+        EXPECT_LT(clump.lods[l].indices.size(), clump.lods[l - 1].indices.size()) << "LOD " << l;
+        EXPECT_GE(clump.lods[l].error.deformed.rms, clump.lods[l - 1].error.deformed.rms) << "LOD " << l;
+        EXPECT_GE(clump.lods[l].error.rest.hausdorff, clump.lods[l - 1].error.rest.hausdorff) << "LOD " << l;
+    }
     // Noon is brighter than midnight (c00 of green).
     EXPECT_GT(lib.sky.frames[lib.sky.frames.size() / 2].sh[1], 100.0f * lib.sky.frames[0].sh[1]);
 }

@@ -112,3 +112,33 @@ TEST(Scene, SkyErrorsNameTheKey) {
     EXPECT_NE(errorOf(writeScene("s6.json", scene(R"({"turbidity": 1.0})"))).find("sky.turbidity must be between"),
               std::string::npos);
 }
+
+TEST(Scene, LodFractionsAreCheckedInOrder) {
+    auto scene = [](const std::string& lod) {
+        return R"({"name": "t", "seed": 5, "field": {"tilesX": 1, "tilesY": 1}, "lod": )" + lod + "}";
+    };
+    Scene s = loadScene(writeScene("lod.json", scene(R"({"triangleFractions": [1, 0.5, 0.2, 0.1, 0.05]})")), "full",
+                        std::nullopt);
+    EXPECT_EQ(s.lod.triangleFractions[3], 0.1f);
+    EXPECT_NE(errorOf(writeScene("lod1.json", scene(R"({"triangleFractions": [1, 0.5, 0.6, 0.1, 0.05]})")))
+                  .find("lod.triangleFractions[2] must not exceed"),
+              std::string::npos);
+    EXPECT_NE(errorOf(writeScene("lod2.json", scene(R"({"triangleFractions": [0.9, 0.5, 0.2, 0.1, 0.05]})")))
+                  .find("lod.triangleFractions[0] must be 1"),
+              std::string::npos);
+    EXPECT_NE(errorOf(writeScene("lod3.json", scene(R"({"triangleFractions": [1, 0.5]})"))).find("array of 5"),
+              std::string::npos);
+}
+
+TEST(Scene, LightSectionOverridesTheBake) {
+    auto p = writeScene("light.json", R"({"name": "t", "seed": 5, "field": {"tilesX": 1, "tilesY": 1},
+      "light": {"raysPerVertex": 64, "bounces": 0, "framesPerLevel": 3}})");
+    Scene s = loadScene(p, "full", std::nullopt);
+    EXPECT_EQ(s.light.bake.raysPerVertex, 64u);
+    EXPECT_EQ(s.light.bake.bounces, 0u);
+    EXPECT_EQ(s.light.framesPerLevel, 3u);
+    EXPECT_NE(errorOf(writeScene("light2.json", R"({"name": "t", "seed": 5, "field": {"tilesX": 1, "tilesY": 1},
+      "light": {"framesPerLevel": 1}})"))
+                  .find("light.framesPerLevel must be between 2"),
+              std::string::npos);
+}

@@ -1,0 +1,91 @@
+#include "clump_lod.h"
+
+#include "core/error.h"
+#include "light/sh.h"
+
+#include <algorithm>
+
+namespace meadow {
+namespace {
+
+// Irradiance of each vertex's front side under the test sky, averaged over the channels: the
+// light scalar the LOD error compares.
+std::vector<float> frontIrradiance(const VertexAppearance& appearance, const std::vector<float>& sky, int order) {
+    const uint32_t n = uint32_t(sh::coefficientCount(order));
+    std::vector<float> out(appearance.vertexCount, 0.0f);
+    for (uint32_t v = 0; v < appearance.vertexCount; ++v) {
+        float sum = 0.0f;
+        for (uint32_t c = 0; c < 3; ++c)
+            for (uint32_t i = 0; i < n; ++i)
+                sum += appearance.at(v, c * n + i)[0] * sky[3 * i + c]; // front side: values 0 .. 3n
+        out[v] = sum / 3.0f;
+    }
+    return out;
+}
+
+} // namespace
+
+std::array<ClumpLod, kLodCount> buildClumpLods(const ClumpMotion& motion, const ClumpLight& light, const Mesh& meanPose,
+                                               const std::vector<float>& testSky, const LodParams& params) {
+    const uint32_t vertexCount = uint32_t(meanPose.vertices.size());
+    std::vector<glm::vec3> positions(vertexCount), normals(vertexCount);
+    std::vector<glm::vec2> uvs(vertexCount);
+    for (uint32_t v = 0; v < vertexCount; ++v) {
+        positions[v] = glm::vec3(meanPose.vertices[v].positionU);
+        normals[v] = glm::vec3(meanPose.vertices[v].normalV);
+        uvs[v] = glm::vec2(meanPose.vertices[v].positionU.w, meanPose.vertices[v].normalV.w);
+    }
+    // Motion in metres (weight 1: a vertex that moves differently costs like one that is out of
+    // place) and the mean light transfer in units of its own spread over the clump.
+    const AttributeValues motionRows = motionAttributes(motion.basis, 0);
+    const AttributeValues transfer = meanTransferAttributes(light.vertices);
+    const std::vector<uint32_t> groups = rodGroups(motion.clump.mesh);
+    SimplifyInput input;
+    input.positions = positions;
+    input.normals = normals;
+    input.uvs = uvs;
+    input.indices = meanPose.indices;
+    input.attributes = {{"motion", motionRows.values, motionRows.width, 1.0f},
+                        {"light", transfer.values, transfer.width, 0.01f}};
+    input.collapseGroups = groups;
+    LodOptions options;
+    options.triangleFractions = params.triangleFractions;
+    const std::array<MeshLod, kLodCount> lods = buildLods(input, options);
+
+    // The error over frames of the strongest wind, where LODs differ most.
+    const MotionClip& strongest = motion.clips.back();
+    std::vector<std::vector<glm::vec3>> frames;
+    for (uint32_t k = 0; k < 8; ++k) {
+        const uint32_t frame = strongest.firstFrame + k * (strongest.frameCount - 1) / 7;
+        std::vector<glm::vec3> p(vertexCount);
+        for (uint32_t v = 0; v < vertexCount; ++v)
+            p[v] = positions[v] + motion.basis.displacement(v, frame);
+        frames.push_back(std::move(p));
+    }
+    const std::vector<float> lightScalar = frontIrradiance(light.vertices, testSky, light.order);
+    LodErrorInput full;
+    full.positions = positions;
+    full.indices = meanPose.indices;
+    full.lightScalar = lightScalar;
+    full.frames = frames;
+    const std::array<LodError, kLodCount> errors = measureLodErrors(full, lods);
+
+    std::array<ClumpLod, kLodCount> out;
+    for (uint32_t l = 0; l < kLodCount; ++l)
+        out[l] = {lods[l].vertices, lods[l].indices, errors[l]};
+    return out;
+}
+
+Mesh lodMeshAtFrame(const Mesh& meanPose, const MotionBasis& motion, const ClumpLod& lod, uint32_t lodIndex,
+                    uint32_t frame) {
+    const Mesh posed = meshAtFrame(meanPose, motion, frame, lodIndex);
+    Mesh out;
+    out.vertices.reserve(lod.vertices.size());
+    for (uint32_t v : lod.vertices)
+        out.vertices.push_back(posed.vertices[v]);
+    out.indices = lod.indices;
+    out.boundingRadius = meanPose.boundingRadius;
+    return out;
+}
+
+} // namespace meadow
