@@ -425,13 +425,6 @@ std::vector<PlantClump> makePlants(const Scene& scene) {
 
 } // namespace
 
-std::vector<Mesh> clumpMeshes(const Library& library) {
-    std::vector<Mesh> meshes;
-    for (const LibraryClump& c : library.clumps)
-        meshes.push_back(c.mesh);
-    return meshes;
-}
-
 uint64_t libraryInputHash(const Scene& scene) {
     std::string key = scene.resolved.dump() + "|" + scene.preset + "|" + std::to_string(scene.seed) + "|" +
                       std::to_string(kLibraryFormatVersion) + "|" + std::to_string(kPrecomputeVersion);

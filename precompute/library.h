@@ -56,9 +56,6 @@ struct Library {
     double buildSeconds = 0.0; // as recorded when built
 };
 
-// The clumps' meshes, in clump order (GpuInstance::mesh indexes them).
-std::vector<Mesh> clumpMeshes(const Library& library);
-
 // What the library of `scene` would be built from, hashed: scene, preset, seed, format.
 uint64_t libraryInputHash(const Scene& scene);
 

@@ -6,6 +6,7 @@
 // The CPU reference is engine/render/cull_reference.cpp; both must agree exactly.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+#include "lod_select.h"
 
 layout(local_size_x = kCullGroupSize) in;
 
@@ -14,6 +15,12 @@ layout(set = 0, binding = 1, std430) readonly buffer Instances { GpuInstance ins
 layout(set = 0, binding = 2, std430) buffer DrawCommands { GpuDrawIndexedCommand draws[]; };
 layout(set = 0, binding = 3, std430) writeonly buffer VisibleList { uint visible[]; };
 layout(set = 0, binding = 4, std430) buffer Stats { GpuCullStats stats; };
+layout(set = 0, binding = 5, std430) buffer LodState { float lodX[]; };
+
+void append(uint bucket, uint entry) {
+    uint slot = atomicAdd(draws[bucket].instanceCount, 1u);
+    visible[draws[bucket].firstInstance + slot] = entry;
+}
 
 // Sphere against the six inward-facing planes; `precise` keeps the arithmetic identical to the
 // CPU reference (no fused multiply-add).
@@ -39,8 +46,31 @@ void main() {
 
     atomicAdd(stats.testedInstances, 1u);
     if (sphereVisible(center, radius)) {
-        uint slot = atomicAdd(draws[inst.mesh].instanceCount, 1u);
-        visible[draws[inst.mesh].firstInstance + slot] = index;
         atomicAdd(stats.visibleInstances, 1u);
+        uint lodCount = frame.counts.w;
+        uint first = inst.mesh * lodCount;
+        if (lodCount <= 1u) {
+            append(first, index);
+            return;
+        }
+        // The sphere's projected radius in pixels picks the LOD (lod_select.h); the instance's
+        // coordinate is kept for the hysteresis of the next frame.
+        precise float dist = max(length(center - frame.cameraPosition.xyz), 1e-3);
+        precise float screenRadius = radius * frame.lodScreen.x / dist;
+        GpuLodParams p;
+        p.switchRadius[0] = frame.lodSwitchRadius.x;
+        p.switchRadius[1] = frame.lodSwitchRadius.y;
+        p.switchRadius[2] = frame.lodSwitchRadius.z;
+        p.switchRadius[3] = frame.lodSwitchRadius.w;
+        p.band = frame.lodBand.x;
+        p.jitter = frame.lodBand.y;
+        p.hysteresis = frame.lodBand.z;
+        p.pad = 0.0;
+        GpuLodChoice c = lodSelect(p, screenRadius, lodInstanceRandom(index), lodX[index]);
+        lodX[index] = c.x;
+        uint lod = min(c.lod, lodCount - 1u), fadeLod = min(c.fadeLod, lodCount - 1u);
+        append(first + lod, index);
+        if (fadeLod != lod)
+            append(first + fadeLod, index | kLodFadeEntryBit);
     }
 }

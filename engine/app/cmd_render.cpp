@@ -111,12 +111,12 @@ int runRender(const Args& argv) {
     int status = 0;
     {
         FieldRenderer renderer =
-            createFieldRenderer(ctx, clumpMeshes(library), library.field, library.atlas, fieldScenery(library));
+            createFieldRenderer(ctx, fieldMeshes(library), library.field, library.atlas, fieldScenery(library));
         Offscreen offscreen = createOffscreen(ctx, {width, height});
         SkyState sky = skyForTimeOfDay(timeOfDay);
         for (uint32_t i = 0; i < frames; ++i) {
-            gpu::GpuFrame frame = makeFrameUniforms(camera, float(width) / float(height), sky, renderer.instanceCount,
-                                                    renderer.meshCount, i);
+            gpu::GpuFrame frame =
+                makeFrameUniforms(camera, width, height, sky, renderer.instanceCount, renderer.meshCount, i);
             renderOffscreenFrame(ctx, renderer, offscreen, frame);
             std::filesystem::path path = framePath(out, i, frames);
             if (kind == ImageFileKind::Png)
@@ -166,15 +166,15 @@ int runBench(const Args& argv) {
     nlohmann::json j;
     {
         FieldRenderer renderer =
-            createFieldRenderer(ctx, clumpMeshes(library), field, library.atlas, fieldScenery(library));
+            createFieldRenderer(ctx, fieldMeshes(library), field, library.atlas, fieldScenery(library));
         Offscreen offscreen = createOffscreen(ctx, {width, height});
         SkyState sky = skyForTimeOfDay(scene.timeOfDay);
         std::vector<double> frameMs, cpuMs;
         std::map<std::string, std::vector<double>> passMs;
         const uint32_t warmup = 5;
         for (uint32_t i = 0; i < warmup + frames; ++i) {
-            gpu::GpuFrame frame = makeFrameUniforms(camera, float(width) / float(height), sky, renderer.instanceCount,
-                                                    renderer.meshCount, i);
+            gpu::GpuFrame frame =
+                makeFrameUniforms(camera, width, height, sky, renderer.instanceCount, renderer.meshCount, i);
             FrameTimings t = renderOffscreenFrame(ctx, renderer, offscreen, frame);
             if (i < warmup)
                 continue;
@@ -206,8 +206,12 @@ int runBench(const Args& argv) {
         // The uniform block, and the instance pipeline's push constant recorded into each frame.
         j["uploadBytesPerFrame"] = sizeof(gpu::GpuFrame) + sizeof(renderer.mirrorNormal);
         j["trianglesPerFrame"] = stats.trianglesDrawn;
-        j["instancesPerLod"] = {stats.visibleInstances};
-        j["instancesPerClump"] = stats.visiblePerMesh;
+        // Draws per LOD over all clumps (a crossfading instance counts in both of its LODs).
+        std::vector<uint32_t> perLod(renderer.lodCount, 0);
+        for (size_t m = 0; m < stats.visiblePerMesh.size(); ++m)
+            perLod[m % renderer.lodCount] += stats.visiblePerMesh[m];
+        j["instancesPerLod"] = perLod;
+        j["visibleInstances"] = stats.visibleInstances;
         destroyOffscreen(ctx, offscreen);
         destroyFieldRenderer(ctx, renderer);
     }

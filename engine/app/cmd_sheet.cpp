@@ -98,8 +98,7 @@ int runSheet(const Args& argv) {
                 ctx, std::vector<Mesh>{lodMeshAtFrame(clump.mesh, clump.motion, clump.lods[l], l, frame)},
                 std::vector<gpu::GpuInstance>{one}, library.atlas, scenery);
             Offscreen offscreen = createOffscreen(ctx, {cellW, cellH});
-            renderOffscreenFrame(ctx, renderer, offscreen,
-                                 makeFrameUniforms(camera, float(cellW) / float(cellH), sky, 1, 1, frame));
+            renderOffscreenFrame(ctx, renderer, offscreen, makeFrameUniforms(camera, cellW, cellH, sky, 1, 1, frame));
             std::vector<uint8_t> pixels = readLdrPixels(ctx, offscreen.targets);
             destroyOffscreen(ctx, offscreen);
             destroyFieldRenderer(ctx, renderer);
@@ -133,7 +132,7 @@ int runSheet(const Args& argv) {
                 uploadToBuffer(ctx, renderer.vertices, posed.vertices.data(),
                                posed.vertices.size() * sizeof(gpu::GpuVertex));
                 renderOffscreenFrame(ctx, renderer, offscreen,
-                                     makeFrameUniforms(camera, float(cellW) / float(cellH), sky, 1, 1, frame));
+                                     makeFrameUniforms(camera, cellW, cellH, sky, 1, 1, frame));
                 place(sheet, columns, level, c, readLdrPixels(ctx, offscreen.targets));
             }
         }

@@ -120,7 +120,7 @@ int runView(const Args& argv) {
     int status = 0;
     {
         FieldRenderer renderer =
-            createFieldRenderer(ctx, clumpMeshes(library), library.field, library.atlas, fieldScenery(library));
+            createFieldRenderer(ctx, fieldMeshes(library), library.field, library.atlas, fieldScenery(library));
         Window window = createWindow(ctx, "meadow — " + scene.name, width, height);
         window.vsync = !args.has("--no-vsync");
         GpuTimer timer = createGpuTimer(ctx, 16);
@@ -214,9 +214,8 @@ int runView(const Args& argv) {
             Camera camera = cameraFromArgs(args, scene);
             camera.eye = fly.eye;
             camera.target = fly.eye + fly.forward();
-            updateFrameUniforms(renderer,
-                                makeFrameUniforms(camera, float(targets.extent.width) / float(targets.extent.height),
-                                                  sky, renderer.instanceCount, renderer.meshCount, frame));
+            updateFrameUniforms(renderer, makeFrameUniforms(camera, targets.extent.width, targets.extent.height, sky,
+                                                            renderer.instanceCount, renderer.meshCount, frame));
 
             VK_CHECK(vkResetCommandBuffer(window.cmd, 0));
             VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};

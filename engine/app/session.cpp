@@ -62,7 +62,46 @@ FieldScenery fieldScenery(const Library& library) {
     const glm::vec2 half = 0.5f * stats.tileSize * glm::vec2(float(stats.tilesX), float(stats.tilesY));
     // 1 m spacing follows hills of tens of metres within millimetres; 20 m of margin ease them
     // into the plain.
-    return {makeTerrainMesh(library.placement.terrain, half, 20.0f, 1.0f), library.placement.windDirection};
+    FieldScenery scenery{makeTerrainMesh(library.placement.terrain, half, 20.0f, 1.0f),
+                         library.placement.windDirection};
+    scenery.lodCount = kLodCount;
+    gpu::GpuLodParams& p = scenery.lod;
+    p.band = 0.1f;
+    p.jitter = 0.2f;
+    p.hysteresis = 0.05f;
+    // A sphere of radius R covering r pixels shows an error e at r e / R pixels: LOD i + 1 may
+    // take over below r = tolerance R / e_(i+1), for the clump whose error is largest for its size.
+    const float tolerancePixels = 1.0f;
+    std::vector<float> radius(library.clumps.size(), 0.0f);
+    for (const gpu::GpuInstance& inst : library.field)
+        radius[inst.mesh] = std::max(radius[inst.mesh], inst.boundingRadius);
+    for (uint32_t i = 0; i + 1 < kLodCount; ++i) {
+        float r = 1e6f;
+        for (size_t c = 0; c < library.clumps.size(); ++c) {
+            const double e = library.clumps[c].lods[i + 1].error.deformed.rms;
+            if (e > 0.0 && radius[c] > 0.0f)
+                r = std::min(r, float(tolerancePixels * radius[c] / e));
+        }
+        // Bands must not overlap: each switch lies below the previous one's band.
+        if (i > 0)
+            r = std::min(r, p.switchRadius[i - 1] * (1.0f - p.band) / (1.0f + p.band) * 0.98f);
+        p.switchRadius[i] = r;
+    }
+    return scenery;
+}
+
+std::vector<Mesh> fieldMeshes(const Library& library) {
+    std::vector<Mesh> meshes;
+    for (const LibraryClump& clump : library.clumps)
+        for (const ClumpLod& lod : clump.lods) {
+            Mesh mesh;
+            for (uint32_t v : lod.vertices)
+                mesh.vertices.push_back(clump.mesh.vertices[v]);
+            mesh.indices = lod.indices;
+            mesh.boundingRadius = clump.mesh.boundingRadius;
+            meshes.push_back(std::move(mesh));
+        }
+    return meshes;
 }
 
 } // namespace meadow

@@ -22,8 +22,12 @@ ContextOptions contextOptionsFromArgs(const ParsedArgs& args);
 // The scene's camera, overridden by --camera EX,EY,EZ,TX,TY,TZ.
 Camera cameraFromArgs(const ParsedArgs& args, const Scene& scene);
 
-// The library's terrain and wind direction, as the field renderer draws them.
+// The library's terrain, wind direction and LOD choice, as the field renderer draws them. The
+// switch radii put each LOD's error (RMS distance over simulated frames) at about one pixel.
 FieldScenery fieldScenery(const Library& library);
+
+// Every clump's five LOD meshes at its mean pose, clump-major, as FieldScenery::lodCount wants.
+std::vector<Mesh> fieldMeshes(const Library& library);
 
 // Prints the validation summary when validation ran; returns the exit status to use: 0, or 3
 // when the layer reported anything.

@@ -53,10 +53,13 @@ SkyState skyForTimeOfDay(float hours) {
     return s;
 }
 
-gpu::GpuFrame makeFrameUniforms(const Camera& camera, float aspect, const SkyState& sky, uint32_t instanceCount,
-                                uint32_t meshCount, uint32_t frameIndex) {
+gpu::GpuFrame makeFrameUniforms(const Camera& camera, uint32_t width, uint32_t height, const SkyState& sky,
+                                uint32_t instanceCount, uint32_t meshCount, uint32_t frameIndex) {
     gpu::GpuFrame f{};
-    f.viewProj = projectionMatrix(camera, aspect) * viewMatrix(camera);
+    const glm::mat4 projection = projectionMatrix(camera, float(width) / float(height));
+    f.viewProj = projection * viewMatrix(camera);
+    // A sphere of radius R at distance d covers R * lodScreen.x / d pixels vertically.
+    f.lodScreen = glm::vec4(0.5f * float(height) * std::abs(projection[1][1]), 0.0f, 0.0f, 0.0f);
     f.inverseViewProj = glm::inverse(f.viewProj);
     std::array<glm::vec4, 6> planes = frustumPlanes(camera, f.viewProj);
     for (int i = 0; i < 6; ++i)

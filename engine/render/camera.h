@@ -36,7 +36,9 @@ struct SkyState {
 };
 SkyState skyForTimeOfDay(float hours);
 
-gpu::GpuFrame makeFrameUniforms(const Camera& camera, float aspect, const SkyState& sky, uint32_t instanceCount,
-                                uint32_t meshCount, uint32_t frameIndex);
+// The frame's uniform block for a width x height image. The field renderer fills in what it owns
+// (its LOD count and parameters: updateFrameUniforms).
+gpu::GpuFrame makeFrameUniforms(const Camera& camera, uint32_t width, uint32_t height, const SkyState& sky,
+                                uint32_t instanceCount, uint32_t meshCount, uint32_t frameIndex);
 
 } // namespace meadow

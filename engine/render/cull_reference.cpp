@@ -40,6 +40,44 @@ float visibilityMargin(const gpu::GpuFrame& frame, const gpu::GpuInstance& insta
     return margin;
 }
 
+gpu::GpuLodChoice lodReference(const gpu::GpuFrame& frame, const gpu::GpuInstance& instance, uint32_t index,
+                               float previousX) {
+    Sphere s = boundingSphere(instance);
+    const glm::vec3 d = s.center - glm::vec3(frame.cameraPosition);
+    const float dist = std::max(std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), 1e-3f);
+    const float screenRadius = s.radius * frame.lodScreen.x / dist;
+    gpu::GpuLodParams p{};
+    for (int i = 0; i < 4; ++i)
+        p.switchRadius[i] = frame.lodSwitchRadius[i];
+    p.band = frame.lodBand.x;
+    p.jitter = frame.lodBand.y;
+    p.hysteresis = frame.lodBand.z;
+    return gpu::lodSelect(p, screenRadius, gpu::lodInstanceRandom(index), previousX);
+}
+
+std::vector<std::vector<uint32_t>> cullReferenceBuckets(const gpu::GpuFrame& frame,
+                                                        std::span<const gpu::GpuInstance> instances,
+                                                        std::vector<float>& lodX) {
+    const uint32_t lodCount = std::max(frame.counts.w, 1u);
+    std::vector<std::vector<uint32_t>> buckets(frame.counts.y);
+    for (uint32_t i : cullReference(frame, instances)) {
+        const uint32_t first = instances[i].mesh * lodCount;
+        if (lodCount == 1) {
+            buckets[first].push_back(i);
+            continue;
+        }
+        const gpu::GpuLodChoice c = lodReference(frame, instances[i], i, lodX[i]);
+        lodX[i] = c.x;
+        const uint32_t lod = std::min(c.lod, lodCount - 1), fadeLod = std::min(c.fadeLod, lodCount - 1);
+        buckets[first + lod].push_back(i);
+        if (fadeLod != lod)
+            buckets[first + fadeLod].push_back(i | gpu::kLodFadeEntryBit);
+    }
+    for (std::vector<uint32_t>& b : buckets)
+        std::sort(b.begin(), b.end());
+    return buckets;
+}
+
 std::vector<uint32_t> cullReference(const gpu::GpuFrame& frame, std::span<const gpu::GpuInstance> instances) {
     std::vector<uint32_t> visible;
     uint32_t count = std::min<uint32_t>(frame.counts.x, static_cast<uint32_t>(instances.size()));

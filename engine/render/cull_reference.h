@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gpu_types.h"
+#include "lod_select.h"
 
 #include <cstdint>
 #include <span>
@@ -20,5 +21,16 @@ float visibilityMargin(const gpu::GpuFrame& frame, const gpu::GpuInstance& insta
 
 // Indices of the visible instances, ascending.
 std::vector<uint32_t> cullReference(const gpu::GpuFrame& frame, std::span<const gpu::GpuInstance> instances);
+
+// The LOD the cull pass gives a visible instance (frame.counts.w LODs, the frame's LOD
+// parameters), from its coordinate of the previous frame; the same arithmetic as cull.comp.glsl.
+gpu::GpuLodChoice lodReference(const gpu::GpuFrame& frame, const gpu::GpuInstance& instance, uint32_t index,
+                               float previousX);
+
+// The cull pass with levels of detail: per draw bucket (clump * LODs + LOD) its visible-list
+// entries (instance index, kLodFadeEntryBit on the second draw of a crossfade), ascending.
+// `lodX` holds each instance's coordinate and is updated for the visible ones, as on the GPU.
+std::vector<std::vector<uint32_t>>
+cullReferenceBuckets(const gpu::GpuFrame& frame, std::span<const gpu::GpuInstance> instances, std::vector<float>& lodX);
 
 } // namespace meadow

@@ -21,9 +21,15 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const Mesh> meshes,
         throw Error("the field's texture atlas is empty or the wrong size");
     if (scenery.terrain.indices.empty() || glm::length(scenery.windDirection) < 1e-6f)
         throw Error("the field has no terrain or no wind direction");
+    if (scenery.lodCount == 0 || scenery.lodCount > gpu::kLodSelectCount || meshes.size() % scenery.lodCount != 0)
+        throw Error("the field has " + std::to_string(meshes.size()) + " meshes for " +
+                    std::to_string(scenery.lodCount) + " levels of detail per clump");
     FieldRenderer r;
     r.instanceCount = static_cast<uint32_t>(instances.size());
     r.meshCount = static_cast<uint32_t>(meshes.size());
+    r.lodCount = scenery.lodCount;
+    r.lodParams = scenery.lod;
+    const uint32_t clumpCount = r.meshCount / r.lodCount;
 
     r.cull = createComputePipeline(ctx, "cull.comp");
     r.tonemap = createComputePipeline(ctx, "tonemap.comp");
@@ -52,17 +58,19 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const Mesh> meshes,
         indices.insert(indices.end(), meshes[m].indices.begin(), meshes[m].indices.end());
         r.meshTriangles.push_back(uint32_t(meshes[m].indices.size() / 3));
     }
-    std::vector<uint32_t> perMesh(meshes.size(), 0);
+    // Each bucket's range holds every instance of its clump: an instance lands in at most one
+    // range per LOD of its clump (two while crossfading, never twice in one).
+    std::vector<uint32_t> perClump(clumpCount, 0);
     for (const gpu::GpuInstance& inst : instances) {
-        if (inst.mesh >= meshes.size())
-            throw Error("a field instance names mesh " + std::to_string(inst.mesh) + " of " +
-                        std::to_string(meshes.size()));
-        perMesh[inst.mesh]++;
+        if (inst.mesh >= clumpCount)
+            throw Error("a field instance names clump " + std::to_string(inst.mesh) + " of " +
+                        std::to_string(clumpCount));
+        perClump[inst.mesh]++;
     }
     uint32_t first = 0;
     for (size_t m = 0; m < meshes.size(); ++m) {
         draws[m].firstInstance = first;
-        first += perMesh[m];
+        first += perClump[m / r.lodCount];
     }
 
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
@@ -77,8 +85,12 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const Mesh> meshes,
                      MemoryUse::Device);
     r.drawCommandTemplate = createBuffer(
         ctx, drawBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
-    r.visibleList = createBuffer(ctx, instances.size() * sizeof(uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+    r.visibleList = createBuffer(ctx, size_t(first) * sizeof(uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                  MemoryUse::Device);
+    r.lodState = createBuffer(ctx, instances.size() * sizeof(float), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                              MemoryUse::Device);
+    const std::vector<float> lodStart(instances.size(), 0.0f);
+    uploadToBuffer(ctx, r.lodState, lodStart.data(), r.lodState.size);
     r.stats =
         createBuffer(ctx, sizeof(gpu::GpuCullStats), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device);
     r.statsReadback =
@@ -108,7 +120,7 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.cull, &r.tonemap, &r.sky, &r.ground, &r.instance})
         destroyPipeline(ctx, *p);
     for (Buffer* b : {&r.frameUniforms, &r.instances, &r.vertices, &r.indices, &r.drawCommands, &r.drawCommandTemplate,
-                      &r.visibleList, &r.stats, &r.statsReadback, &r.terrainVertices, &r.terrainIndices})
+                      &r.visibleList, &r.stats, &r.statsReadback, &r.terrainVertices, &r.terrainIndices, &r.lodState})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     if (r.sampler)
@@ -117,7 +129,13 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
 }
 
 void updateFrameUniforms(FieldRenderer& r, const gpu::GpuFrame& frame) {
-    std::memcpy(r.frameUniforms.mapped(), &frame, sizeof(frame));
+    gpu::GpuFrame f = frame;
+    f.counts.y = r.meshCount;
+    f.counts.w = r.lodCount;
+    f.lodSwitchRadius = glm::vec4(r.lodParams.switchRadius[0], r.lodParams.switchRadius[1], r.lodParams.switchRadius[2],
+                                  r.lodParams.switchRadius[3]);
+    f.lodBand = glm::vec4(r.lodParams.band, r.lodParams.jitter, r.lodParams.hysteresis, 0.0f);
+    std::memcpy(r.frameUniforms.mapped(), &f, sizeof(f));
 }
 
 void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t, GpuTimer* timer) {
@@ -133,7 +151,7 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
 
-    bindPipeline(ctx, cmd, r.cull, {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats});
+    bindPipeline(ctx, cmd, r.cull, {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState});
     dispatchCovering(cmd, r.cull, r.instanceCount);
     if (timer)
         markTimestamp(*timer, cmd, "cull");
@@ -178,7 +196,7 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     vkCmdDrawIndexed(cmd, r.terrainIndexCount, 1, 0, 0, 0);
 
     bindPipeline(ctx, cmd, r.instance,
-                 {r.frameUniforms, r.instances, r.visibleList, r.vertices,
+                 {r.frameUniforms, r.instances, r.visibleList, r.vertices, r.lodState,
                   Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
     vkCmdPushConstants(cmd, r.instance.layout, r.instance.pushConstantStages, 0, sizeof(glm::vec4), &r.mirrorNormal);
     vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "gpu_types.h"
+#include "lod_select.h"
 #include "mesh.h"
 #include "render/camera.h"
 #include "render/render_targets.h"
@@ -43,9 +44,12 @@ struct FieldRenderer {
 
     Buffer terrainVertices;
     Buffer terrainIndices;
+    Buffer lodState; // per instance: its LOD coordinate, kept from frame to frame (lod_select.h)
 
     uint32_t instanceCount = 0;
-    uint32_t meshCount = 0;
+    uint32_t meshCount = 0; // draw buckets: clumps x lodCount, clump-major
+    uint32_t lodCount = 1;
+    gpu::GpuLodParams lodParams{};
     std::vector<uint32_t> meshTriangles; // per mesh
     uint32_t terrainIndexCount = 0;
     glm::vec4 mirrorNormal{0.0f, 0.0f, 1.0f, 0.0f}; // push constant of the instance pipeline
@@ -55,16 +59,21 @@ struct FieldRenderer {
 struct FieldScenery {
     Mesh terrain;                        // world space; drawn as is
     glm::vec2 windDirection{1.0f, 0.0f}; // (x, z) the clumps were simulated in
+    // Levels of detail: `meshes` hold lodCount meshes per clump (clump-major) and the cull pass
+    // picks each instance's with lodSelect; with 1, every instance draws its clump's one mesh.
+    uint32_t lodCount = 1;
+    gpu::GpuLodParams lod{};
 };
 
 struct FieldStats {
     uint32_t visibleInstances = 0;
     uint32_t testedInstances = 0;
-    uint64_t trianglesDrawn = 0; // instances + terrain + sky
-    std::vector<uint32_t> visiblePerMesh;
+    uint64_t trianglesDrawn = 0;          // instances + terrain + sky
+    std::vector<uint32_t> visiblePerMesh; // per draw bucket; a crossfading instance counts in two
 };
 
-// Every instance's `mesh` must index `meshes`; its boundingRadius must hold the mesh (as it moves).
+// Every instance's `mesh` names a clump, whose meshes are meshes[mesh * lodCount + lod]; its
+// boundingRadius must hold every one of them as it moves.
 FieldRenderer createFieldRenderer(Context& context, std::span<const Mesh> meshes,
                                   std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
                                   const FieldScenery& scenery);

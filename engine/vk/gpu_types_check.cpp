@@ -19,7 +19,10 @@ static_assert(offsetof(GpuFrame, sunColor) == 256);
 static_assert(offsetof(GpuFrame, skyZenith) == 272);
 static_assert(offsetof(GpuFrame, skyHorizon) == 288);
 static_assert(offsetof(GpuFrame, counts) == 304);
-static_assert(sizeof(GpuFrame) == 320);
+static_assert(offsetof(GpuFrame, lodScreen) == 320);
+static_assert(offsetof(GpuFrame, lodSwitchRadius) == 336);
+static_assert(offsetof(GpuFrame, lodBand) == 352);
+static_assert(sizeof(GpuFrame) == 368);
 
 static_assert(offsetof(GpuInstance, positionScale) == 0);
 static_assert(offsetof(GpuInstance, yaw) == 16);

@@ -32,7 +32,10 @@ struct GpuFrame {
     vec4 sunColor;         // rgb linear, w unused
     vec4 skyZenith;        // rgb linear radiance of the sky overhead, w exposure
     vec4 skyHorizon;       // rgb linear radiance of the sky at the horizon, w unused
-    uvec4 counts;          // x instance count, y mesh count, z frame index, w unused
+    uvec4 counts;          // x instance count, y draw buckets, z frame index, w LODs per clump (1: no choice)
+    vec4 lodScreen;        // x pixels per unit of radius at unit distance (0.5 height P[1][1]), yzw unused
+    vec4 lodSwitchRadius;  // GpuLodParams::switchRadius (lod_select.h), px
+    vec4 lodBand;          // x band, y jitter, z hysteresis (GpuLodParams), w unused
 };
 
 // One plant instance (storage buffer, read by cull and the vertex shader).

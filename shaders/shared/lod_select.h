@@ -51,6 +51,18 @@ struct GpuLodChoice {
     float x;      // the coordinate to keep for the next frame
 };
 
+// The per-instance random number u in [0, 1) that jitters the switch radii: a PCG hash of the
+// instance index (Jarzynski & Olano 2020), 24 bits so the float is exact.
+MEADOW_LOD_FN float lodInstanceRandom(uint instance) {
+    uint state = instance * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return float(((word >> 22u) ^ word) >> 8u) * (1.0f / 16777216.0f);
+}
+
+// The visible list's entry for an instance: its index, with the top bit set when the entry
+// draws the instance's fadeLod (the second draw of a crossfade).
+MEADOW_LOD_CONST kLodFadeEntryBit = 0x80000000u;
+
 // The continuous coordinate of a screen radius r for an instance whose random number is u in
 // [0, 1). Non-increasing in r.
 MEADOW_LOD_FN float lodCoordinate(GpuLodParams p, float r, float u) {

@@ -13,6 +13,8 @@
 #include "vk/pipeline.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -136,8 +138,8 @@ TEST_F(Gpu, CullPassMatchesCpuReference) {
         camera.target = v.target;
         camera.fovYDegrees = v.fov;
         camera.farCull = v.farCull;
-        gpu::GpuFrame frame = makeFrameUniforms(camera, 64.0f / 48.0f, skyForTimeOfDay(12.0f), renderer.instanceCount,
-                                                renderer.meshCount, 0);
+        gpu::GpuFrame frame =
+            makeFrameUniforms(camera, 64, 48, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.meshCount, 0);
         renderOffscreenFrame(*context, renderer, offscreen, frame);
 
         std::vector<gpu::GpuDrawIndexedCommand> draws(renderer.meshCount);
@@ -195,6 +197,78 @@ TEST_F(Gpu, CullPassMatchesCpuReference) {
     destroyFieldRenderer(*context, renderer);
 }
 
+// The cull pass with five LODs per clump: every visible instance's LOD coordinate agrees with the
+// CPU reference (lod_select.h, shared), and the visible list holds exactly the entries that
+// coordinate implies: one per instance on a plateau, two (the second marked) while crossfading.
+TEST_F(Gpu, LodCullMatchesCpuReference) {
+    std::vector<gpu::GpuInstance> instances = scatter(20011, 11);
+    std::vector<Mesh> meshes;
+    for (uint32_t clump = 0; clump < 3; ++clump)
+        for (uint32_t lod = 0; lod < kLodCount; ++lod)
+            meshes.push_back(makeTuftMesh(9 - 2 * lod, 5));
+    FieldScenery scenery = testScenery();
+    scenery.lodCount = kLodCount;
+    scenery.lod = {{120.0f, 50.0f, 20.0f, 8.0f}, 0.1f, 0.2f, 0.05f, 0.0f};
+    FieldRenderer renderer = createFieldRenderer(*context, meshes, instances, testAtlas(), scenery);
+    Offscreen offscreen = createOffscreen(*context, {160, 120});
+    const glm::vec3 eyes[] = {{0, 2, 0}, {-150, 30, -150}, {0, 2.2f, 0.4f}, {50, 5, 20}};
+    size_t crossfading = 0, lodsSeen = 0;
+    for (const glm::vec3& eye : eyes) {
+        Camera camera;
+        camera.eye = eye;
+        camera.target = glm::vec3(10, 1, 30);
+        camera.farCull = 400.0f;
+        std::vector<float> before(instances.size()), after(instances.size());
+        readbackBuffer(*context, renderer.lodState, before.data(), before.size() * 4);
+        renderOffscreenFrame(
+            *context, renderer, offscreen,
+            makeFrameUniforms(camera, 160, 120, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.meshCount, 0));
+        gpu::GpuFrame frame; // exactly what the GPU saw, LOD fields included
+        std::memcpy(&frame, renderer.frameUniforms.mapped(), sizeof(frame));
+        readbackBuffer(*context, renderer.lodState, after.data(), after.size() * 4);
+        std::vector<gpu::GpuDrawIndexedCommand> draws(renderer.meshCount);
+        readbackBuffer(*context, renderer.drawCommands, draws.data(), draws.size() * sizeof(draws[0]));
+        std::vector<uint32_t> list(size_t(draws.back().firstInstance) + instances.size());
+        readbackBuffer(*context, renderer.visibleList, list.data(), renderer.visibleList.size);
+
+        // The entries each visible instance's GPU coordinate implies, bucket by bucket.
+        std::vector<std::vector<uint32_t>> implied(renderer.meshCount), listed(renderer.meshCount);
+        std::vector<float> cpuX = before;
+        const std::vector<std::vector<uint32_t>> reference = cullReferenceBuckets(frame, instances, cpuX);
+        size_t disagreeing = 0;
+        std::vector<bool> lodUsed(kLodCount, false);
+        for (uint32_t i : cullReference(frame, instances)) {
+            const float x = after[i];
+            disagreeing += std::abs(x - cpuX[i]) > 1e-4f;
+            const uint32_t lod = uint32_t(std::floor(x)), first = instances[i].mesh * kLodCount;
+            implied[first + lod].push_back(i);
+            lodUsed[lod] = true;
+            if (x != std::floor(x)) {
+                implied[first + lod + 1].push_back(i | gpu::kLodFadeEntryBit);
+                ++crossfading;
+            }
+        }
+        for (uint32_t m = 0; m < renderer.meshCount; ++m) {
+            listed[m].assign(list.begin() + draws[m].firstInstance,
+                             list.begin() + draws[m].firstInstance + draws[m].instanceCount);
+            std::sort(listed[m].begin(), listed[m].end());
+            std::sort(implied[m].begin(), implied[m].end());
+            EXPECT_EQ(listed[m], implied[m]) << "bucket " << m;
+            // Tolerance for the CPU reference: entries of the few instances whose coordinate
+            // differs in the last bits at a band edge or a hysteresis threshold.
+            EXPECT_LE(std::max(listed[m].size(), reference[m].size()) - std::min(listed[m].size(), reference[m].size()),
+                      2 * disagreeing)
+                << "bucket " << m;
+        }
+        EXPECT_LE(disagreeing, 3u) << "instances whose LOD coordinate differs from the CPU reference";
+        lodsSeen += size_t(std::count(lodUsed.begin(), lodUsed.end(), true));
+    }
+    EXPECT_GT(crossfading, 0u); // the views cross bands
+    EXPECT_GE(lodsSeen, 8u);    // and use several LODs
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
+}
+
 TEST_F(Gpu, TimestampsBracketEveryPass) {
     std::vector<gpu::GpuInstance> instances = scatter(1000, 3);
     FieldRenderer renderer = createFieldRenderer(*context, testMeshes(), instances, testAtlas(), testScenery());
@@ -202,7 +276,7 @@ TEST_F(Gpu, TimestampsBracketEveryPass) {
     Camera camera;
     FrameTimings t = renderOffscreenFrame(
         *context, renderer, offscreen,
-        makeFrameUniforms(camera, 1.0f, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.meshCount, 0));
+        makeFrameUniforms(camera, 32, 32, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.meshCount, 0));
     ASSERT_EQ(t.gpu.size(), 3u);
     EXPECT_EQ(t.gpu[0].label, "cull");
     EXPECT_EQ(t.gpu[1].label, "draw");
@@ -244,7 +318,7 @@ TEST_F(Gpu, MirroredInstanceMatchesTheReflectedMesh) {
         camera.eye = glm::vec3(0.4f, 0.9f, -2.2f);
         camera.target = glm::vec3(0.3f, 0.35f, -0.2f);
         renderOffscreenFrame(*context, renderer, offscreen,
-                             makeFrameUniforms(camera, 1.0f, skyForTimeOfDay(10.0f), 1, 1, 0));
+                             makeFrameUniforms(camera, 96, 96, skyForTimeOfDay(10.0f), 1, 1, 0));
         std::vector<uint8_t> pixels = readLdrPixels(*context, offscreen.targets);
         destroyOffscreen(*context, offscreen);
         destroyFieldRenderer(*context, renderer);

@@ -7,8 +7,8 @@ using namespace meadow;
 
 namespace {
 
-gpu::GpuFrame frameFor(const Camera& camera, float aspect = 16.0f / 9.0f) {
-    return makeFrameUniforms(camera, aspect, skyForTimeOfDay(12.0f), 1000000, 0, 0);
+gpu::GpuFrame frameFor(const Camera& camera, uint32_t width = 1600, uint32_t height = 900) {
+    return makeFrameUniforms(camera, width, height, skyForTimeOfDay(12.0f), 1000000, 0, 0);
 }
 
 gpu::GpuInstance at(glm::vec3 p, float radius = 0.5f, float scale = 1.0f) {
@@ -38,7 +38,7 @@ TEST(CullReference, ClassifiesAroundTheCamera) {
     c.target = {0, 1, 10};
     c.fovYDegrees = 60.0f;
     c.farCull = 100.0f;
-    gpu::GpuFrame f = frameFor(c, 1.0f);
+    gpu::GpuFrame f = frameFor(c, 900, 900);
     EXPECT_TRUE(instanceVisible(f, at({0, 0.5f, 10})));    // ahead
     EXPECT_FALSE(instanceVisible(f, at({0, 0.5f, -10})));  // behind
     EXPECT_FALSE(instanceVisible(f, at({30, 0.5f, 10})));  // far to the side
