@@ -23,7 +23,7 @@ ContextOptions contextOptionsFromArgs(const ParsedArgs& args);
 Camera cameraFromArgs(const ParsedArgs& args, const Scene& scene);
 
 // The library's terrain, wind direction and LOD choice, as the field renderer draws them. The
-// switch radii put each LOD's error (RMS distance over simulated frames) at about one pixel.
+// switch radii put each LOD's error (RMS distance over simulated frames) at about 0.3 pixels.
 FieldScenery fieldScenery(const Library& library);
 
 // Every clump's five LOD meshes at its mean pose, clump-major, as FieldScenery::lodCount wants.
