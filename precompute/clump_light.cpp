@@ -1,6 +1,7 @@
 #include "clump_light.h"
 
 #include "core/error.h"
+#include "plants/atlas.h"
 
 #include <algorithm>
 #include <chrono>
@@ -11,11 +12,6 @@ namespace {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-float srgbToLinear(uint8_t value) {
-    const float c = float(value) / 255.0f;
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
 // One frame held out of the models per clip: halfway between its first two baked frames, when
@@ -32,8 +28,8 @@ std::vector<uint32_t> heldOutFrames(const std::vector<MotionClip>& clips, const 
     return frames;
 }
 
-// E = T · L for every group of order^2 coefficients of a transfer vector; the groups cycle through
-// the three channels (transfer.h's layouts, vertex and ground alike).
+} // namespace
+
 Eigen::VectorXd irradiance(const Eigen::VectorXf& transfer, const std::vector<float>& sky, int order) {
     const Eigen::Index n = Eigen::Index(order * order);
     Eigen::VectorXd e(transfer.size() / n);
@@ -46,6 +42,8 @@ Eigen::VectorXd irradiance(const Eigen::VectorXf& transfer, const std::vector<fl
     }
     return e;
 }
+
+namespace {
 
 double relativeDifference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
     const double norm = b.norm();

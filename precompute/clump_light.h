@@ -42,6 +42,11 @@ struct ClumpLight {
     double bakeSeconds = 0.0, reduceSeconds = 0.0;
 };
 
+// E = T · L for every group of order^2 coefficients of a transfer vector, `sky` the RGB radiance
+// SH (sky::SkyFrame::sh layout); the groups cycle through the three channels (transfer.h's
+// layouts, vertex and ground alike).
+Eigen::VectorXd irradiance(const Eigen::VectorXf& transfer, const std::vector<float>& sky, int order);
+
 // The linear albedo of each vertex: the atlas (8-bit sRGB) averaged over a 3 x 3 texel patch
 // around the vertex's UV.
 std::vector<glm::vec3> vertexAlbedo(const Mesh& mesh, const RgbaImage& atlas);

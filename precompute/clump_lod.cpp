@@ -1,25 +1,21 @@
 #include "clump_lod.h"
 
 #include "core/error.h"
-#include "light/sh.h"
 
 #include <algorithm>
 
 namespace meadow {
 namespace {
 
-// Irradiance of each vertex's front side under the test sky, averaged over the channels: the
-// light scalar the LOD error compares.
+// Irradiance of each vertex's front side at its mean pose under the test sky, averaged over the
+// channels: the light scalar the LOD error compares.
 std::vector<float> frontIrradiance(const VertexAppearance& appearance, const std::vector<float>& sky, int order) {
-    const uint32_t n = uint32_t(sh::coefficientCount(order));
-    std::vector<float> out(appearance.vertexCount, 0.0f);
-    for (uint32_t v = 0; v < appearance.vertexCount; ++v) {
-        float sum = 0.0f;
-        for (uint32_t c = 0; c < 3; ++c)
-            for (uint32_t i = 0; i < n; ++i)
-                sum += appearance.at(v, c * n + i)[0] * sky[3 * i + c]; // front side: values 0 .. 3n
-        out[v] = sum / 3.0f;
-    }
+    const std::vector<glm::vec3> atRest(appearance.vertexCount, glm::vec3(0.0f));
+    // Per vertex: front R, G, B, then back R, G, B (transfer.h's layout).
+    const Eigen::VectorXd e = irradiance(evaluateVertexAppearance(appearance, atRest), sky, order);
+    std::vector<float> out(appearance.vertexCount);
+    for (uint32_t v = 0; v < appearance.vertexCount; ++v)
+        out[v] = float((e(6 * v) + e(6 * v + 1) + e(6 * v + 2)) / 3.0);
     return out;
 }
 

@@ -30,8 +30,8 @@ std::string hex(uint64_t v) {
 
 // --- clumps ---------------------------------------------------------------------------------
 
-void writeClump(ByteWriter& w, const ClumpMotion& m) {
-    Mesh mesh = clumpRenderMesh(m);
+// `mesh` is the clump as drawn (clumpRenderMesh of m).
+void writeClump(ByteWriter& w, const ClumpMotion& m, const Mesh& mesh) {
     w.string(m.clump.name);
     w.u32(m.clump.plants);
     std::vector<float> vertexData;
@@ -486,9 +486,14 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     std::vector<ClumpMotion> motions(plants.size());
     tbb::parallel_for(size_t(0), plants.size(),
                       [&](size_t i) { motions[i] = buildClumpMotion(plants[i], scene, scene.seed * 1000003ull + i); });
+    // Every later stage works on the clumps as drawn.
+    std::vector<Mesh> meshes;
+    for (const ClumpMotion& m : motions)
+        meshes.push_back(clumpRenderMesh(m));
     ByteWriter clumps;
     clumps.u32(uint32_t(motions.size()));
-    for (const ClumpMotion& m : motions) {
+    for (size_t i = 0; i < motions.size(); ++i) {
+        const ClumpMotion& m = motions[i];
         say("clump %s: %zu vertices, %zu triangles, %u frames, LOD0 %u modes (%.2f%% error), graph %u nodes %u edges, "
             "max penetration %.1f mm (simulate %.1f s, PCA %.1f s, graph %.1f s)",
             m.clump.name.c_str(), m.clump.mesh.positions.size(), m.clump.mesh.indices.size() / 3, m.basis.frames,
@@ -499,7 +504,7 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
                        ->maxPenetration *
                    1000.0f),
             m.simulateSeconds, m.pcaSeconds, m.graphSeconds);
-        writeClump(clumps, m);
+        writeClump(clumps, m, meshes[i]);
     }
     file.sections["CLMP"] = clumps.take();
 
@@ -510,8 +515,7 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     const std::vector<float> testSky = sky::buildSkyFrame(scene.sky.params, 12.0).sh;
     std::vector<ClumpLight> lights(motions.size());
     tbb::parallel_for(size_t(0), motions.size(), [&](size_t i) {
-        const Mesh mesh = clumpRenderMesh(motions[i]);
-        lights[i] = buildClumpLight(motions[i], mesh, vertexAlbedo(mesh, atlasImage), scene.light, testSky);
+        lights[i] = buildClumpLight(motions[i], meshes[i], vertexAlbedo(meshes[i], atlasImage), scene.light, testSky);
     });
     ByteWriter light;
     light.u32(uint32_t(lights.size()));
@@ -530,7 +534,7 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     say("levels of detail: %u per clump", kLodCount);
     std::vector<std::array<ClumpLod, kLodCount>> lods(motions.size());
     tbb::parallel_for(size_t(0), motions.size(), [&](size_t i) {
-        lods[i] = buildClumpLods(motions[i], lights[i], clumpRenderMesh(motions[i]), testSky, scene.lod);
+        lods[i] = buildClumpLods(motions[i], lights[i], meshes[i], testSky, scene.lod);
     });
     ByteWriter lodBytes;
     lodBytes.u32(uint32_t(lods.size()));
@@ -547,9 +551,6 @@ void buildLibrary(const Scene& scene, const std::filesystem::path& path, bool qu
     }
     file.sections["LODS"] = lodBytes.take();
 
-    std::vector<Mesh> meshes;
-    for (const ClumpMotion& m : motions)
-        meshes.push_back(clumpRenderMesh(m));
     PlacedField placed = placeField(scene, motions, meshes);
     {
         // Per-instance colour variation, in field order.

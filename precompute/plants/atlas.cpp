@@ -32,11 +32,7 @@ const Cell& cellOf(PartKind part) {
 
 // sRGB-encoded 0xRRGGBB to linear colour, so blends happen in linear light.
 glm::vec3 srgb(uint32_t hex) {
-    auto channel = [](uint32_t byte) {
-        float c = static_cast<float>(byte) / 255.0f;
-        return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-    };
-    return {channel((hex >> 16) & 0xff), channel((hex >> 8) & 0xff), channel(hex & 0xff)};
+    return {srgbToLinear(uint8_t(hex >> 16)), srgbToLinear(uint8_t(hex >> 8)), srgbToLinear(uint8_t(hex))};
 }
 
 uint8_t encodeSrgb(float linear) {
@@ -176,6 +172,11 @@ struct Painter {
 };
 
 } // namespace
+
+float srgbToLinear(uint8_t value) {
+    const float c = static_cast<float>(value) / 255.0f;
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
 
 AtlasRegion irisAtlasRegion(PartKind part) {
     const Cell& cell = cellOf(part);

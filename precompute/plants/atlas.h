@@ -30,6 +30,9 @@ struct AtlasRegion {
     bool contains(glm::vec2 uv) const { return uv.x >= min.x && uv.x <= max.x && uv.y >= min.y && uv.y <= max.y; }
 };
 
+// An 8-bit sRGB-encoded channel (the atlas's texels) to linear, 0..1.
+float srgbToLinear(uint8_t value);
+
 // Where each part sits in the iris atlas; independent of the atlas size, so meshes can be built
 // before (or without) the atlas.
 AtlasRegion irisAtlasRegion(PartKind part);
