@@ -1,29 +1,41 @@
 #version 460
+// Clump fragments: the atlas (alpha-tested petals and blades) times the irradiance of the side
+// the camera sees, radiance = albedo / pi * E (transfer/transfer.h); the crossfade dither.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "lod_select.h"
 
 MEADOW_FRAME_BLOCK(0, 0)
-// The plants' texture atlas (sRGB texels, so samples are linear).
-layout(set = 0, binding = 5) uniform sampler2D atlas;
+// The plants' texture atlas (sRGB texels, so samples are linear), after the vertex stage's
+// storage buffers: with it between them, lavapipe (Mesa 22.3) at 128-bit vectors corrupted its heap.
+layout(set = 0, binding = 10) uniform sampler2D atlas;
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec2 inUv;
-layout(location = 2) in float inTint;
-layout(location = 3) in float inHeight;
-layout(location = 4) flat in float inFade;
-layout(location = 5) flat in uint inIsFadeLod;
+layout(location = 2) in vec3 inWorld;
+layout(location = 3) in vec3 inFront;
+layout(location = 4) in vec3 inBack;
+layout(location = 5) flat in vec4 inAlbedo;
+layout(location = 6) flat in float inFade;
+layout(location = 7) flat in uint inIsFadeLod;
+layout(location = 8) flat in uint inLod;
 layout(location = 0) out vec4 outColor;
+
+const vec3 kLodColors[5] = vec3[5](vec3(0.9, 0.15, 0.1), vec3(0.95, 0.75, 0.1), vec3(0.2, 0.8, 0.2),
+                                   vec3(0.1, 0.6, 0.95), vec3(0.7, 0.3, 0.9));
 
 void main() {
     // A crossfading instance draws in two LODs with complementary dither masks (lod_select.h).
     if (inFade > 0.0 && !lodDitherKeeps(inIsFadeLod != 0u, inFade, uint(gl_FragCoord.x), uint(gl_FragCoord.y)))
         discard;
-    // Blades and petals are thin and two-sided: light the face the camera sees.
-    vec3 n = normalize(inNormal) * (gl_FrontFacing ? 1.0 : -1.0);
-    vec3 albedo = texture(atlas, inUv).rgb;
-    // A little per-instance variation so neighbouring copies of a clump differ, and a darker
-    // base where the clump shades itself (until precomputed transfer lights it properly).
-    albedo *= mix(0.85, 1.1, inTint) * mix(0.55, 1.0, clamp(inHeight * 2.5, 0.0, 1.0));
-    outColor = vec4(albedo * diffuseLight(frame, n), 1.0);
+    vec4 texel = inAlbedo.w > 0.5 ? vec4(inAlbedo.rgb, 1.0) : texture(atlas, inUv);
+    if (texel.a < 0.5)
+        discard;
+    // The side of the sheet the camera sees: the normal's side when it faces the eye.
+    bool front = dot(inNormal, frame.cameraPosition.xyz - inWorld) >= 0.0;
+    vec3 radiance = texel.rgb * (front ? inFront : inBack);
+    // LOD colours at a fixed display brightness (exposure divided out), the sheet's far side darker.
+    if (frame.motion.z == kDebugViewLod)
+        radiance = kLodColors[min(inLod, 4u)] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
+    outColor = vec4(radiance, 1.0);
 }

@@ -22,9 +22,13 @@ cache lacks it. With --frames N > 1, frame i goes to FILE with .NNNN before the 
 
 options:
   --out FILE            output image (.png or .exr)
-  --frames N            frames to render, 1/30 s apart (default 1)
+  --frames N            frames to render, 1/30 s apart (default 1), after 2 s of motion in the
+                        wind so the first frame already sways in it
   --size WxH            image size (default 1280x720)
   --time-of-day H       local solar hour, 0-24 (default: the scene's)
+  --wind L              base wind level, 0 (calm) to the scene's top level (default 1.2); waves
+                        and gusts travel over it
+  --debug-lod           colour each clump by its level of detail
   --camera EX,EY,EZ,TX,TY,TZ   eye and target in metres (default: the scene's)
   --preset ci|full      scene preset (default full)
   --seed S              override the scene's seed
@@ -40,7 +44,8 @@ Renders frames offscreen and writes timings as JSON to OUT: frame times, CPU tim
 GPU time per pass from timestamps, bytes uploaded per frame, triangles and instances drawn.
 
 options:
-  --clumps N            instances in the field: the scene's field is tiled (or cut) to N
+  --clumps N            clumps in the field: the scene's clumps are tiled (or cut) to N, without
+                        the rocks
   --frames F            measured frames (default 120), after 5 warm-up frames
   --size WxH            image size (default 1280x720)
   --driver gpu|cpu      gpu: GPU-driven culling (the only path so far)
@@ -87,7 +92,8 @@ double percentile(std::vector<double> values, double p) {
 int runRender(const Args& argv) {
     if (printHelpIfAsked(argv, kRenderHelp))
         return 0;
-    CommandSpec spec{"render", {"SCENE"}, {"--out", "--frames", "--size", "--time-of-day", "--camera"}, {}};
+    CommandSpec spec{"render", {"SCENE"}, {"--out", "--frames", "--size", "--time-of-day", "--camera", "--wind"}, {}};
+    spec.switchOptions.insert("--debug-lod");
     addSceneOptions(spec);
     addEngineOptions(spec);
     ParsedArgs args = parseArgs(spec, argv);
@@ -103,6 +109,9 @@ int runRender(const Args& argv) {
     Scene scene = sceneFromArgs(args);
     float timeOfDay = args.f32("--time-of-day", scene.timeOfDay, 0.0f, 24.0f);
     Camera camera = cameraFromArgs(args, scene);
+    WindState wind;
+    const float topLevel = float(scene.wind.levelSpeeds.size() - 1);
+    wind.baseLevel = args.f32("--wind", std::min(wind.baseLevel, topLevel), 0.0f, topLevel);
 
     Library library = ensureLibrary(scene);
 
@@ -110,14 +119,22 @@ int runRender(const Args& argv) {
     createContext(ctx, contextOptionsFromArgs(args));
     int status = 0;
     {
-        FieldRenderer renderer =
-            createFieldRenderer(ctx, fieldMeshes(library), library.field, library.atlas, fieldScenery(library));
+        FieldRenderer renderer = createFieldRenderer(ctx, fieldClumps(library), fieldInstances(library), library.atlas,
+                                                     fieldScenery(library));
         Offscreen offscreen = createOffscreen(ctx, {width, height});
-        SkyState sky = skyForTimeOfDay(timeOfDay);
+        FrameState state;
+        state.camera = camera;
+        state.width = width;
+        state.height = height;
+        state.hours = timeOfDay;
+        state.wind = wind;
+        state.debugView = args.has("--debug-lod") ? gpu::kDebugViewLod : gpu::kDebugViewNone;
+        const double warmUp = 2.0;
+        state.seconds = warmUp;
+        advanceMotion(ctx, renderer, state);
         for (uint32_t i = 0; i < frames; ++i) {
-            gpu::GpuFrame frame =
-                makeFrameUniforms(camera, width, height, sky, renderer.instanceCount, renderer.meshCount, i);
-            renderOffscreenFrame(ctx, renderer, offscreen, frame);
+            state.seconds = warmUp + double(i) / 30.0 + 1e-6;
+            renderOffscreenFrame(ctx, renderer, offscreen, state);
             std::filesystem::path path = framePath(out, i, frames);
             if (kind == ImageFileKind::Png)
                 writeRgba8(path, width, height, readLdrPixels(ctx, offscreen.targets));
@@ -156,9 +173,10 @@ int runBench(const Args& argv) {
     auto [width, height] = args.size("--size", {1280, 720});
     Scene scene = sceneFromArgs(args);
     Library library = ensureLibrary(scene);
-    std::vector<gpu::GpuInstance> field = library.field;
+    // The field with its rocks; --clumps tiles the clumps alone (the rocks are left out).
+    std::vector<gpu::GpuInstance> field = fieldInstances(library);
     if (args.has("--clumps"))
-        field = tileField(field, args.u32("--clumps", 0, 1, 50'000'000));
+        field = tileField(library.field, args.u32("--clumps", 0, 1, 50'000'000));
     Camera camera = cameraFromArgs(args, scene);
 
     Context ctx;
@@ -166,18 +184,25 @@ int runBench(const Args& argv) {
     nlohmann::json j;
     {
         FieldRenderer renderer =
-            createFieldRenderer(ctx, fieldMeshes(library), field, library.atlas, fieldScenery(library));
+            createFieldRenderer(ctx, fieldClumps(library), field, library.atlas, fieldScenery(library));
         Offscreen offscreen = createOffscreen(ctx, {width, height});
-        SkyState sky = skyForTimeOfDay(scene.timeOfDay);
+        FrameState state;
+        state.camera = camera;
+        state.width = width;
+        state.height = height;
+        uint64_t uploadMin = UINT64_MAX, uploadMax = 0;
         std::vector<double> frameMs, cpuMs;
         std::map<std::string, std::vector<double>> passMs;
         const uint32_t warmup = 5;
         for (uint32_t i = 0; i < warmup + frames; ++i) {
-            gpu::GpuFrame frame =
-                makeFrameUniforms(camera, width, height, sky, renderer.instanceCount, renderer.meshCount, i);
-            FrameTimings t = renderOffscreenFrame(ctx, renderer, offscreen, frame);
+            // A moving day: the sky advances a minute per frame, so the light pass runs every frame.
+            state.seconds = double(i) / 30.0 + 1e-6;
+            state.hours = scene.timeOfDay + double(i) / 60.0;
+            FrameTimings t = renderOffscreenFrame(ctx, renderer, offscreen, state);
             if (i < warmup)
                 continue;
+            uploadMin = std::min(uploadMin, renderer.uploadBytesLastFrame);
+            uploadMax = std::max(uploadMax, renderer.uploadBytesLastFrame);
             frameMs.push_back(t.wallMs);
             cpuMs.push_back(t.cpuRecordSubmitMs);
             double total = 0.0;
@@ -203,8 +228,11 @@ int runBench(const Args& argv) {
             gpuMs[label] = percentile(values, 0.5);
         j["gpuMs"] = gpuMs;
         j["cpuMsPerFrame"] = percentile(cpuMs, 0.5);
-        // The uniform block, and the instance pipeline's push constant recorded into each frame.
-        j["uploadBytesPerFrame"] = sizeof(gpu::GpuFrame) + sizeof(renderer.mirrorNormal);
+        // The uniform block and the push constants recorded into each frame (FieldRenderer).
+        j["uploadBytesPerFrame"] = uploadMax;
+        j["uploadBytesPerFrameMin"] = uploadMin;
+        j["instanceRecordBytes"] =
+            sizeof(gpu::GpuInstance) + sizeof(gpu::GpuMotionState) + sizeof(float); // + LOD coordinate
         j["trianglesPerFrame"] = stats.trianglesDrawn;
         // Draws per LOD over all clumps (a crossfading instance counts in both of its LODs).
         std::vector<uint32_t> perLod(renderer.lodCount, 0);

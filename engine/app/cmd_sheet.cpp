@@ -71,8 +71,9 @@ int runSheet(const Args& argv) {
     one.positionScale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     one.boundingRadius = clump.mesh.boundingRadius * 1.5f; // room for the swaying
     one.tint = 0.5f;
-    const FieldScenery scenery{makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(2.0f), 2.0f, 0.5f),
-                               library.placement.windDirection};
+    FieldScenery scenery{makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(2.0f), 2.0f, 0.5f),
+                         library.placement.windDirection};
+    scenery.sky = library.sky;
     // Side view: the wind blows across the picture, left to right.
     glm::vec3 wind = scene.wind.direction;
     glm::vec3 side = glm::normalize(glm::cross(wind, glm::vec3(0.0f, 1.0f, 0.0f)));
@@ -80,7 +81,11 @@ int runSheet(const Args& argv) {
     camera.target = glm::vec3(0.0f, 0.42f, 0.0f);
     camera.eye = camera.target + side * 1.7f + glm::vec3(0.0f, 0.2f, 0.0f);
     camera.fovYDegrees = 38.0f;
-    SkyState sky = skyForTimeOfDay(scene.timeOfDay);
+    FrameState state;
+    state.camera = camera;
+    state.width = cellW;
+    state.height = cellH;
+    state.hours = scene.timeOfDay;
     auto place = [&](std::vector<uint8_t>& sheet, uint32_t sheetColumns, uint32_t row, uint32_t column,
                      const std::vector<uint8_t>& pixels) {
         for (uint32_t y = 0; y < cellH; ++y)
@@ -94,11 +99,13 @@ int runSheet(const Args& argv) {
         std::vector<uint8_t> sheet(size_t(cellW) * kLodCount * cellH * 2 * 4, 0);
         std::vector<uint8_t> full;
         for (uint32_t l = 0; l < kLodCount; ++l) {
-            FieldRenderer renderer = createFieldRenderer(
-                ctx, std::vector<Mesh>{lodMeshAtFrame(clump.mesh, clump.motion, clump.lods[l], l, frame)},
-                std::vector<gpu::GpuInstance>{one}, library.atlas, scenery);
+            FieldRenderer renderer =
+                createFieldRenderer(ctx,
+                                    std::vector<FieldClump>{staticFieldClump(
+                                        lodMeshAtFrame(clump.mesh, clump.motion, clump.lods[l], l, frame), 1)},
+                                    std::vector<gpu::GpuInstance>{one}, library.atlas, scenery);
             Offscreen offscreen = createOffscreen(ctx, {cellW, cellH});
-            renderOffscreenFrame(ctx, renderer, offscreen, makeFrameUniforms(camera, cellW, cellH, sky, 1, 1, frame));
+            renderOffscreenFrame(ctx, renderer, offscreen, state);
             std::vector<uint8_t> pixels = readLdrPixels(ctx, offscreen.targets);
             destroyOffscreen(ctx, offscreen);
             destroyFieldRenderer(ctx, renderer);
@@ -121,18 +128,21 @@ int runSheet(const Args& argv) {
 
     std::vector<uint8_t> sheet(size_t(cellW) * columns * cellH * levels * 4, 0);
     {
-        FieldRenderer renderer = createFieldRenderer(ctx, std::vector<Mesh>{clump.mesh},
+        FieldRenderer renderer = createFieldRenderer(ctx, std::vector<FieldClump>{staticFieldClump(clump.mesh, 1)},
                                                      std::vector<gpu::GpuInstance>{one}, library.atlas, scenery);
         Offscreen offscreen = createOffscreen(ctx, {cellW, cellH});
         for (uint32_t level = 0; level < levels; ++level) {
             const std::vector<uint32_t>& frames = levelFrames[level];
             for (uint32_t c = 0; c < columns && !frames.empty(); ++c) {
                 uint32_t frame = frames[size_t(c) * frames.size() / columns];
+                // The posed mesh over the renderer's (static) clump vertices.
                 Mesh posed = meshAtFrame(clump.mesh, clump.motion, frame);
-                uploadToBuffer(ctx, renderer.vertices, posed.vertices.data(),
-                               posed.vertices.size() * sizeof(gpu::GpuVertex));
-                renderOffscreenFrame(ctx, renderer, offscreen,
-                                     makeFrameUniforms(camera, cellW, cellH, sky, 1, 1, frame));
+                std::vector<gpu::GpuPlantVertex> vertices(posed.vertices.size());
+                for (uint32_t v = 0; v < vertices.size(); ++v)
+                    vertices[v] = {posed.vertices[v].positionU, posed.vertices[v].normalV, gpu::uvec4(0u, 0u, v, 0u)};
+                uploadToBuffer(ctx, renderer.plantVertices, vertices.data(),
+                               vertices.size() * sizeof(gpu::GpuPlantVertex));
+                renderOffscreenFrame(ctx, renderer, offscreen, state);
                 place(sheet, columns, level, c, readLdrPixels(ctx, offscreen.targets));
             }
         }

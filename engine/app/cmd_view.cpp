@@ -119,13 +119,15 @@ int runView(const Args& argv) {
     createContext(ctx, options);
     int status = 0;
     {
-        FieldRenderer renderer =
-            createFieldRenderer(ctx, fieldMeshes(library), library.field, library.atlas, fieldScenery(library));
+        FieldRenderer renderer = createFieldRenderer(ctx, fieldClumps(library), fieldInstances(library), library.atlas,
+                                                     fieldScenery(library));
         Window window = createWindow(ctx, "meadow — " + scene.name, width, height);
         window.vsync = !args.has("--no-vsync");
         GpuTimer timer = createGpuTimer(ctx, 16);
         RenderTargets targets{};
-        SkyState sky = skyForTimeOfDay(timeOfDay);
+        FrameState state;
+        state.hours = timeOfDay;
+        auto started = std::chrono::steady_clock::now();
 
         uint32_t frame = 0;
         uint32_t generation = 0;
@@ -214,8 +216,11 @@ int runView(const Args& argv) {
             Camera camera = cameraFromArgs(args, scene);
             camera.eye = fly.eye;
             camera.target = fly.eye + fly.forward();
-            updateFrameUniforms(renderer, makeFrameUniforms(camera, targets.extent.width, targets.extent.height, sky,
-                                                            renderer.instanceCount, renderer.meshCount, frame));
+            state.camera = camera;
+            state.width = targets.extent.width;
+            state.height = targets.extent.height;
+            state.seconds = std::chrono::duration<double>(now - started).count();
+            updateFrame(renderer, state);
 
             VK_CHECK(vkResetCommandBuffer(window.cmd, 0));
             VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};

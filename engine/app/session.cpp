@@ -64,6 +64,7 @@ FieldScenery fieldScenery(const Library& library) {
     // into the plain.
     FieldScenery scenery{makeTerrainMesh(library.placement.terrain, half, 20.0f, 1.0f),
                          library.placement.windDirection};
+    scenery.sky = library.sky;
     scenery.lodCount = kLodCount;
     gpu::GpuLodParams& p = scenery.lod;
     p.band = 0.1f;
@@ -92,18 +93,55 @@ FieldScenery fieldScenery(const Library& library) {
     return scenery;
 }
 
-std::vector<Mesh> fieldMeshes(const Library& library) {
-    std::vector<Mesh> meshes;
-    for (const LibraryClump& clump : library.clumps)
-        for (const ClumpLod& lod : clump.lods) {
-            Mesh mesh;
-            for (uint32_t v : lod.vertices)
-                mesh.vertices.push_back(clump.mesh.vertices[v]);
-            mesh.indices = lod.indices;
-            mesh.boundingRadius = clump.mesh.boundingRadius;
-            meshes.push_back(std::move(mesh));
-        }
-    return meshes;
+std::vector<FieldClump> fieldClumps(const Library& library) {
+    std::vector<FieldClump> clumps;
+    // Clumps turn by at most the field's yaw jitter; light is projected for 4 yaws in that range.
+    float jitter = 0.3f;
+    if (library.scene.contains("field") && library.scene["field"].contains("yawJitter"))
+        jitter = library.scene["field"]["yawJitter"].get<float>();
+    for (const LibraryClump& source : library.clumps) {
+        FieldClump clump;
+        clump.mesh = source.mesh;
+        for (const ClumpLod& lod : source.lods)
+            clump.lods.push_back({lod.vertices, lod.indices});
+        clump.motion = source.motion;
+        clump.graph = source.graph;
+        if (source.light.order != 3 || source.light.vertices.valuesPerVertex != 54)
+            throw Error("library clump " + source.name + ": its light transfer has SH order " +
+                        std::to_string(source.light.order) + "; the renderer draws order 3");
+        clump.transfer = source.light.vertices.coefficients;
+        clump.yawLow = -jitter;
+        clump.yawHigh = jitter;
+        clump.yawBins = jitter > 0.0f ? 4 : 1;
+        clumps.push_back(std::move(clump));
+    }
+    // Rocks: static, lit by their baked transfer (no gradient), turned to any yaw (8 light bins).
+    for (const LibraryRock& rock : library.placement.rocks) {
+        Mesh mesh;
+        for (size_t v = 0; v < rock.mesh.positions.size(); ++v)
+            mesh.vertices.push_back({glm::vec4(rock.mesh.positions[v], rock.mesh.uvs[v].x),
+                                     glm::vec4(rock.mesh.normals[v], rock.mesh.uvs[v].y)});
+        mesh.indices = rock.mesh.indices;
+        FieldClump clump = staticFieldClump(mesh, kLodCount);
+        if (rock.order != 3 || rock.transfer.size() != rock.mesh.positions.size() * 54)
+            throw Error("library rock " + rock.mesh.name + ": its light transfer is not SH order 3 per vertex");
+        clump.transfer.reserve(rock.transfer.size() * 4);
+        for (float t : rock.transfer)
+            clump.transfer.insert(clump.transfer.end(), {t, 0.0f, 0.0f, 0.0f});
+        clump.albedo = glm::vec4(0.30f, 0.28f, 0.25f, 1.0f); // as baked (library.cpp)
+        clumps.push_back(std::move(clump));
+    }
+    return clumps;
+}
+
+std::vector<gpu::GpuInstance> fieldInstances(const Library& library) {
+    std::vector<gpu::GpuInstance> instances = library.field;
+    const uint32_t firstRock = uint32_t(library.clumps.size());
+    for (gpu::GpuInstance rock : library.placement.rockInstances) {
+        rock.mesh += firstRock;
+        instances.push_back(rock);
+    }
+    return instances;
 }
 
 } // namespace meadow

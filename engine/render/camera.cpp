@@ -34,27 +34,7 @@ std::array<glm::vec4, 6> frustumPlanes(const Camera& c, const glm::mat4& m) {
     return planes;
 }
 
-SkyState skyForTimeOfDay(float hours) {
-    // A simple sun path: rises in the east at 6, highest (60 degrees) at noon, sets at 18.
-    float dayPhase = (hours - 6.0f) / 12.0f * glm::pi<float>();
-    float elevation = glm::radians(60.0f) * std::sin(dayPhase);
-    float azimuth = dayPhase; // from east (+x) over south (-z) to west (-x)
-    SkyState s;
-    s.sunDirection = glm::normalize(glm::vec3(std::cos(azimuth) * std::cos(elevation), std::sin(elevation),
-                                              -std::sin(azimuth) * std::cos(elevation) * 0.6f));
-    float day = glm::smoothstep(-0.1f, 0.25f, std::sin(elevation));
-    float low = 1.0f - glm::smoothstep(0.0f, 0.5f, std::sin(elevation));
-    s.sunIntensity = 3.0f * day;
-    s.sunColor = glm::mix(glm::vec3(1.0f, 0.96f, 0.9f), glm::vec3(1.0f, 0.55f, 0.3f), low);
-    s.zenith = glm::mix(glm::vec3(0.01f, 0.012f, 0.03f), glm::vec3(0.25f, 0.45f, 0.9f), day);
-    s.horizon = glm::mix(glm::vec3(0.02f, 0.02f, 0.04f),
-                         glm::mix(glm::vec3(0.65f, 0.75f, 0.9f), glm::vec3(0.9f, 0.6f, 0.4f), low * 0.7f), day);
-    s.exposure = glm::mix(4.0f, 0.8f, day);
-    return s;
-}
-
-gpu::GpuFrame makeFrameUniforms(const Camera& camera, uint32_t width, uint32_t height, const SkyState& sky,
-                                uint32_t instanceCount, uint32_t meshCount, uint32_t frameIndex) {
+gpu::GpuFrame makeCameraUniforms(const Camera& camera, uint32_t width, uint32_t height, uint32_t instanceCount) {
     gpu::GpuFrame f{};
     const glm::mat4 projection = projectionMatrix(camera, float(width) / float(height));
     f.viewProj = projection * viewMatrix(camera);
@@ -65,11 +45,7 @@ gpu::GpuFrame makeFrameUniforms(const Camera& camera, uint32_t width, uint32_t h
     for (int i = 0; i < 6; ++i)
         f.frustumPlanes[i] = planes[i];
     f.cameraPosition = glm::vec4(camera.eye, 1.0f);
-    f.sunDirection = glm::vec4(sky.sunDirection, sky.sunIntensity);
-    f.sunColor = glm::vec4(sky.sunColor, 0.0f);
-    f.skyZenith = glm::vec4(sky.zenith, sky.exposure);
-    f.skyHorizon = glm::vec4(sky.horizon, 0.0f);
-    f.counts = glm::uvec4(instanceCount, meshCount, frameIndex, 0u);
+    f.counts = glm::uvec4(instanceCount, 0u, 0u, 0u);
     return f;
 }
 

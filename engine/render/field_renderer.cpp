@@ -5,33 +5,142 @@
 #include "vk/timestamps.h"
 #include "vk/vk_check.h"
 
+#include "core/error.h"
+#include "light/sh.h"
+#include "sky/sun.h"
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <glm/gtc/constants.hpp>
 
 namespace meadow {
 
-FieldRenderer createFieldRenderer(Context& ctx, std::span<const Mesh> meshes,
+namespace {
+
+constexpr uint32_t kSidesTimesChannels = 6; // transfer.h: 2 sides x RGB
+constexpr uint32_t kShCount = 9;            // order 3
+constexpr uint32_t kTransferValues = kSidesTimesChannels * kShCount;
+constexpr double kMotionRate = 30.0; // motion frames per second (the simulation's frame rate)
+
+// Unshadowed transfer of a plain two-sided surface: each side the clamped cosine about its normal
+// (the front's n, the back's -n) in SH, the same for the three channels, no gradient.
+void appendUnshadowedTransfer(const Mesh& mesh, std::vector<float>& out) {
+    const double band[3] = {M_PI, 2.0 * M_PI / 3.0, M_PI / 4.0};
+    const int bandOf[kShCount] = {0, 1, 1, 1, 2, 2, 2, 2, 2};
+    for (const gpu::GpuVertex& v : mesh.vertices) {
+        glm::dvec3 n(v.normalV);
+        n = glm::length(n) > 1e-12 ? glm::normalize(n) : glm::dvec3(0.0, 1.0, 0.0);
+        double y[2][kShCount];
+        sh::evaluate(3, n, y[0]);
+        sh::evaluate(3, -n, y[1]);
+        for (uint32_t side = 0; side < 2; ++side)
+            for (uint32_t c = 0; c < 3; ++c)
+                for (uint32_t i = 0; i < kShCount; ++i) {
+                    out.push_back(float(band[bandOf[i]] * y[side][i]));
+                    out.insert(out.end(), {0.0f, 0.0f, 0.0f});
+                }
+    }
+}
+
+// Luminance of the irradiance on an upward-facing surface from RGB sky SH of order 3: only the
+// m = 0 terms of bands 0 and 1 and 2 contribute at +y (sh.h's basis).
+float upwardIrradianceLuminance(const std::vector<float>& sh) {
+    const double y00 = 0.282095, y10 = 0.488603, y20 = 0.315392 * 2.0;
+    double e[3];
+    for (int c = 0; c < 3; ++c)
+        e[c] = M_PI * y00 * sh[3 * 0 + c] + 2.0 * M_PI / 3.0 * y10 * sh[3 * 2 + c] + M_PI / 4.0 * y20 * sh[3 * 6 + c];
+    return float(std::max(0.0, 0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2]));
+}
+
+void checkClump(const FieldClump& clump, size_t index, uint32_t lodCount) {
+    const std::string what = "field clump " + std::to_string(index);
+    const size_t vertexCount = clump.mesh.vertices.size();
+    if (vertexCount == 0)
+        throw Error(what + " has no vertices");
+    if (clump.lods.size() != lodCount)
+        throw Error(what + " has " + std::to_string(clump.lods.size()) + " levels of detail, not " +
+                    std::to_string(lodCount));
+    for (size_t l = 0; l < clump.lods.size(); ++l) {
+        const FieldLod& lod = clump.lods[l];
+        if (lod.indices.empty() || lod.indices.size() % 3 != 0)
+            throw Error(what + " LOD " + std::to_string(l) + " has no triangles or a partial one");
+        for (uint32_t v : lod.vertices)
+            if (v >= vertexCount)
+                throw Error(what + " LOD " + std::to_string(l) + " names vertex " + std::to_string(v) + " of " +
+                            std::to_string(vertexCount));
+        for (uint32_t i : lod.indices)
+            if (i >= lod.vertices.size())
+                throw Error(what + " LOD " + std::to_string(l) + " has an index past its vertices");
+    }
+    const bool moving = clump.motion.frames > 0;
+    if (moving != (clump.graph.nodeCount > 0))
+        throw Error(what + " has motion without a motion graph or a graph without motion");
+    if (moving) {
+        if (clump.motion.vertexBlock.size() != vertexCount || clump.motion.vertexRowOffset.size() != vertexCount)
+            throw Error(what + ": its motion basis covers " + std::to_string(clump.motion.vertexBlock.size()) +
+                        " vertices, its mesh has " + std::to_string(vertexCount));
+        if (clump.graph.nodeCount != clump.motion.frames || clump.graph.levelCount == 0)
+            throw Error(what + ": its motion graph has " + std::to_string(clump.graph.nodeCount) + " nodes for " +
+                        std::to_string(clump.motion.frames) + " motion frames");
+        for (const MotionBlock& block : clump.motion.blocks)
+            if (block.ranks[0] > 0xffffu)
+                throw Error(what + ": a motion block has more than 65535 modes");
+    }
+    if (!clump.transfer.empty() && clump.transfer.size() != vertexCount * kTransferValues * 4)
+        throw Error(what + ": its light transfer holds " + std::to_string(clump.transfer.size()) +
+                    " values, not 216 per vertex (SH order 3, two sides, RGB, with gradients)");
+    if (clump.yawBins == 0 || !(clump.yawHigh >= clump.yawLow))
+        throw Error(what + ": its yaw range or yaw bins are empty");
+}
+
+} // namespace
+
+FieldClump staticFieldClump(const Mesh& mesh, uint32_t lodCount) {
+    FieldClump clump;
+    clump.mesh = mesh;
+    FieldLod whole;
+    whole.indices = mesh.indices;
+    for (uint32_t v = 0; v < mesh.vertices.size(); ++v)
+        whole.vertices.push_back(v);
+    clump.lods.assign(lodCount, whole);
+    clump.yawLow = 0.0f;
+    clump.yawHigh = glm::two_pi<float>();
+    clump.yawBins = 8;
+    return clump;
+}
+
+FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clumps,
                                   std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
                                   const FieldScenery& scenery) {
     if (instances.empty())
         throw Error("the field has no instances to draw");
-    if (meshes.empty())
-        throw Error("the field has no meshes to draw");
+    if (clumps.empty())
+        throw Error("the field has no clumps to draw");
     if (atlas.rgba.size() != size_t(atlas.width) * atlas.height * 4 || atlas.width == 0)
         throw Error("the field's texture atlas is empty or the wrong size");
     if (scenery.terrain.indices.empty() || glm::length(scenery.windDirection) < 1e-6f)
         throw Error("the field has no terrain or no wind direction");
-    if (scenery.lodCount == 0 || scenery.lodCount > gpu::kLodSelectCount || meshes.size() % scenery.lodCount != 0)
-        throw Error("the field has " + std::to_string(meshes.size()) + " meshes for " +
-                    std::to_string(scenery.lodCount) + " levels of detail per clump");
+    if (scenery.lodCount == 0 || scenery.lodCount > gpu::kLodSelectCount)
+        throw Error("the field asks for " + std::to_string(scenery.lodCount) + " levels of detail per clump");
+    const sky::SkyDay& day = scenery.sky;
+    if (day.frames.empty() || day.shOrder != 3 || day.imageWidth == 0 || day.imageHeight == 0)
+        throw Error("the field's sky has " + std::to_string(day.frames.size()) + " frames of SH order " +
+                    std::to_string(day.shOrder) + "; the renderer needs at least one frame of order 3");
+    for (size_t c = 0; c < clumps.size(); ++c)
+        checkClump(clumps[c], c, scenery.lodCount);
+
     FieldRenderer r;
     r.instanceCount = static_cast<uint32_t>(instances.size());
-    r.meshCount = static_cast<uint32_t>(meshes.size());
+    r.clumpCount = static_cast<uint32_t>(clumps.size());
     r.lodCount = scenery.lodCount;
+    r.meshCount = r.clumpCount * r.lodCount;
     r.lodParams = scenery.lod;
-    const uint32_t clumpCount = r.meshCount / r.lodCount;
+    r.skyDay = day;
 
+    r.animate = createComputePipeline(ctx, "animate.comp");
     r.cull = createComputePipeline(ctx, "cull.comp");
+    r.light = createComputePipeline(ctx, "light.comp", sizeof(uint32_t));
     r.tonemap = createComputePipeline(ctx, "tonemap.comp");
     GraphicsPipelineDesc skyDesc{"sky.vert", "sky.frag", kHdrFormat, kDepthFormat};
     skyDesc.depthTest = false;
@@ -44,83 +153,193 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const Mesh> meshes,
     r.instance = createGraphicsPipeline(ctx, instanceDesc);
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);
+    r.windAzimuth = std::atan2(wind.x, wind.y); // light/sh.h: from +z towards +x
 
-    // All meshes share one vertex and one index buffer; each gets one indirect draw whose
-    // instance range in the visible list holds room for all of that mesh's instances.
-    std::vector<gpu::GpuVertex> vertices;
+    // Every clump's data goes into shared buffers; GpuClump says where.
+    std::vector<gpu::GpuClump> gpuClumps;
+    std::vector<gpu::GpuPlantVertex> plantVertices;
+    std::vector<gpu::GpuLodVertex> lodVertices;
     std::vector<uint32_t> indices;
-    std::vector<gpu::GpuDrawIndexedCommand> draws(meshes.size());
-    for (size_t m = 0; m < meshes.size(); ++m) {
-        draws[m].indexCount = uint32_t(meshes[m].indices.size());
-        draws[m].firstIndex = uint32_t(indices.size());
-        draws[m].vertexOffset = int32_t(vertices.size());
-        vertices.insert(vertices.end(), meshes[m].vertices.begin(), meshes[m].vertices.end());
-        indices.insert(indices.end(), meshes[m].indices.begin(), meshes[m].indices.end());
-        r.meshTriangles.push_back(uint32_t(meshes[m].indices.size() / 3));
+    std::vector<float> motionData;
+    std::vector<uint32_t> motionGraph;
+    std::vector<float> transfer;
+    uint64_t lightVec4s = 0;
+    std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
+    for (size_t ci = 0; ci < clumps.size(); ++ci) {
+        const FieldClump& clump = clumps[ci];
+        const MotionBasis& motion = clump.motion;
+        const bool moving = motion.frames > 0;
+        const uint32_t vertexCount = uint32_t(clump.mesh.vertices.size());
+        gpu::GpuClump g{};
+        const uint32_t vertexBase = uint32_t(plantVertices.size());
+        const uint32_t basisBase = uint32_t(motionData.size());
+        if (moving)
+            motionData.insert(motionData.end(), motion.basis.begin(), motion.basis.end());
+        const uint32_t coordBase = uint32_t(motionData.size());
+        if (moving)
+            motionData.insert(motionData.end(), motion.coords.begin(), motion.coords.end());
+        g.motion = gpu::uvec4(vertexBase, coordBase, moving ? motion.modesPerFrame() : 0u, moving ? motion.frames : 1u);
+
+        // The walk's tables; a static clump gets one frame that holds still.
+        MotionGraph still;
+        still.nodeCount = 1;
+        still.levelCount = 1;
+        still.edgeCount = 1;
+        still.edgeStart = {0, 1};
+        still.edgeTarget = {0};
+        still.edgeWeight = {1};
+        still.naturalNext = {gpu::kMotionNoFrame};
+        const MotionGraph& graph = moving ? clump.graph : still;
+        const uint32_t startAt = uint32_t(motionGraph.size());
+        motionGraph.insert(motionGraph.end(), graph.edgeStart.begin(), graph.edgeStart.end());
+        const uint32_t targetAt = uint32_t(motionGraph.size());
+        motionGraph.insert(motionGraph.end(), graph.edgeTarget.begin(), graph.edgeTarget.end());
+        const uint32_t weightAt = uint32_t(motionGraph.size());
+        motionGraph.insert(motionGraph.end(), graph.edgeWeight.begin(), graph.edgeWeight.end());
+        const uint32_t nextAt = uint32_t(motionGraph.size());
+        motionGraph.insert(motionGraph.end(), graph.naturalNext.begin(), graph.naturalNext.end());
+        g.graph = gpu::uvec4(startAt, targetAt, weightAt, nextAt);
+        g.graphSizes = gpu::uvec4(graph.edgeCount, graph.levelCount, std::max(graph.blendFrames, 1u), 0u);
+
+        for (uint32_t v = 0; v < vertexCount; ++v) {
+            gpu::GpuPlantVertex pv{};
+            pv.positionU = clump.mesh.vertices[v].positionU;
+            pv.normalV = clump.mesh.vertices[v].normalV;
+            if (moving)
+                pv.motion = gpu::uvec4(basisBase + motion.vertexRowOffset[v],
+                                       motion.blocks[motion.vertexBlock[v]].coordOffset, v, 0u);
+            else
+                pv.motion = gpu::uvec4(0u, 0u, v, 0u);
+            plantVertices.push_back(pv);
+        }
+        for (uint32_t l = 0; l < r.lodCount; ++l) {
+            const FieldLod& lod = clump.lods[l];
+            gpu::GpuDrawIndexedCommand& draw = draws[ci * r.lodCount + l];
+            draw.indexCount = uint32_t(lod.indices.size());
+            draw.firstIndex = uint32_t(indices.size());
+            draw.vertexOffset = int32_t(lodVertices.size());
+            for (uint32_t v : lod.vertices) {
+                const uint32_t rank =
+                    moving ? motion.blocks[motion.vertexBlock[v]].ranks[std::min(l, kLodCount - 1)] : 0u;
+                lodVertices.push_back({vertexBase + v, rank | (l << 16)});
+            }
+            indices.insert(indices.end(), lod.indices.begin(), lod.indices.end());
+            r.meshTriangles.push_back(uint32_t(lod.indices.size() / 3));
+        }
+
+        const uint32_t transferBase = uint32_t(transfer.size() / 4);
+        if (clump.transfer.empty())
+            appendUnshadowedTransfer(clump.mesh, transfer);
+        else
+            transfer.insert(transfer.end(), clump.transfer.begin(), clump.transfer.end());
+        const uint32_t variants = 2 * clump.yawBins;
+        g.light = gpu::uvec4(uint32_t(lightVec4s), clump.yawBins, transferBase, vertexCount);
+        lightVec4s += uint64_t(vertexCount) * variants * gpu::kLightVec4sPerVertex;
+        r.lightVertices.push_back(vertexCount * variants);
+        const float range = clump.yawHigh - clump.yawLow;
+        g.yawBins = range > 0.0f
+                        ? glm::vec4(clump.yawLow, float(clump.yawBins) / range, range / float(clump.yawBins), 0.0f)
+                        : glm::vec4(clump.yawLow, 0.0f, 0.0f, 0.0f);
+        g.albedo = clump.albedo;
+        gpuClumps.push_back(g);
     }
+    if (lightVec4s > (uint64_t(1) << 31) / 16 || motionData.size() > (size_t(1) << 31))
+        throw Error("the field's clumps need more than 2 GiB of light or motion data");
+
     // Each bucket's range holds every instance of its clump: an instance lands in at most one
     // range per LOD of its clump (two while crossfading, never twice in one).
-    std::vector<uint32_t> perClump(clumpCount, 0);
-    for (const gpu::GpuInstance& inst : instances) {
-        if (inst.mesh >= clumpCount)
+    std::vector<uint32_t> perClump(r.clumpCount, 0);
+    std::vector<gpu::GpuMotionState> states(instances.size());
+    for (size_t i = 0; i < instances.size(); ++i) {
+        const gpu::GpuInstance& inst = instances[i];
+        if (inst.mesh >= r.clumpCount)
             throw Error("a field instance names clump " + std::to_string(inst.mesh) + " of " +
-                        std::to_string(clumpCount));
+                        std::to_string(r.clumpCount));
         perClump[inst.mesh]++;
+        const FieldClump& clump = clumps[inst.mesh];
+        // Each instance starts at its own frame so that copies never move in lock step.
+        if (clump.motion.frames > 0)
+            states[i] = initialMotionState(clump.graph, uint32_t(i));
     }
     uint32_t first = 0;
-    for (size_t m = 0; m < meshes.size(); ++m) {
+    for (uint32_t m = 0; m < r.meshCount; ++m) {
         draws[m].firstInstance = first;
         first += perClump[m / r.lodCount];
     }
 
+    // The sky day: per frame its SH, sun and backdrop (gpu::kSkyFrameHeaderFloats).
+    const size_t skyStride = gpu::kSkyFrameHeaderFloats + size_t(day.imageWidth) * day.imageHeight * 3;
+    std::vector<float> skyData(skyStride * day.frames.size(), 0.0f);
+    for (size_t f = 0; f < day.frames.size(); ++f) {
+        const sky::SkyFrame& frame = day.frames[f];
+        float* out = &skyData[f * skyStride];
+        if (frame.sh.size() != 27 || frame.image.size() != skyStride - gpu::kSkyFrameHeaderFloats)
+            throw Error("sky frame " + std::to_string(f) + " has the wrong number of SH values or pixels");
+        std::copy(frame.sh.begin(), frame.sh.end(), out);
+        for (int k = 0; k < 3; ++k) {
+            out[28 + k] = frame.sunDirection[k];
+            out[32 + k] = frame.sunRadiance[k];
+        }
+        std::copy(frame.image.begin(), frame.image.end(), out + gpu::kSkyFrameHeaderFloats);
+    }
+    r.brightestIrradiance = 0.0f;
+    for (const sky::SkyFrame& frame : day.frames)
+        r.brightestIrradiance = std::max(r.brightestIrradiance, upwardIrradianceLuminance(frame.sh));
+
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    auto deviceBuffer = [&](Buffer& buffer, const void* data, size_t bytes, VkBufferUsageFlags extra = 0) {
+        buffer = createBuffer(ctx, std::max<size_t>(bytes, 16), storage | extra, MemoryUse::Device);
+        if (data && bytes > 0)
+            uploadToBuffer(ctx, buffer, data, bytes);
+    };
     r.frameUniforms = createBuffer(ctx, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload);
-    r.instances = createBuffer(ctx, instances.size_bytes(), storage, MemoryUse::Device);
-    r.vertices = createBuffer(ctx, vertices.size() * sizeof(gpu::GpuVertex), storage, MemoryUse::Device);
+    deviceBuffer(r.instances, instances.data(), instances.size_bytes());
+    deviceBuffer(r.motionStates, states.data(), states.size() * sizeof(gpu::GpuMotionState),
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    const std::vector<float> lodStart(instances.size(), 0.0f);
+    deviceBuffer(r.lodState, lodStart.data(), lodStart.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.clumps, gpuClumps.data(), gpuClumps.size() * sizeof(gpu::GpuClump));
+    deviceBuffer(r.plantVertices, plantVertices.data(), plantVertices.size() * sizeof(gpu::GpuPlantVertex));
+    deviceBuffer(r.lodVertices, lodVertices.data(), lodVertices.size() * sizeof(gpu::GpuLodVertex));
+    deviceBuffer(r.motionData, motionData.data(), motionData.size() * sizeof(float));
+    deviceBuffer(r.motionGraph, motionGraph.data(), motionGraph.size() * sizeof(uint32_t));
+    deviceBuffer(r.transfer, transfer.data(), transfer.size() * sizeof(float));
+    deviceBuffer(r.vertexLight, nullptr, size_t(lightVec4s) * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.skyData, skyData.data(), skyData.size() * sizeof(float));
     r.indices = createBuffer(ctx, indices.size() * sizeof(uint32_t),
                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
+    uploadToBuffer(ctx, r.indices, indices.data(), r.indices.size);
     VkDeviceSize drawBytes = draws.size() * sizeof(gpu::GpuDrawIndexedCommand);
-    r.drawCommands =
-        createBuffer(ctx, drawBytes, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                     MemoryUse::Device);
+    deviceBuffer(r.drawCommands, draws.data(), drawBytes,
+                 VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     r.drawCommandTemplate = createBuffer(
         ctx, drawBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
-    r.visibleList = createBuffer(ctx, size_t(first) * sizeof(uint32_t), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                 MemoryUse::Device);
-    r.lodState = createBuffer(ctx, instances.size() * sizeof(float), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                              MemoryUse::Device);
-    const std::vector<float> lodStart(instances.size(), 0.0f);
-    uploadToBuffer(ctx, r.lodState, lodStart.data(), r.lodState.size);
-    r.stats =
-        createBuffer(ctx, sizeof(gpu::GpuCullStats), storage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device);
+    uploadToBuffer(ctx, r.drawCommandTemplate, draws.data(), drawBytes);
+    deviceBuffer(r.visibleList, nullptr, size_t(first) * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.stats, nullptr, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     r.statsReadback =
         createBuffer(ctx, sizeof(gpu::GpuCullStats) + drawBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
     std::memset(r.statsReadback.mapped(), 0, r.statsReadback.size);
-
-    uploadToBuffer(ctx, r.instances, instances.data(), instances.size_bytes());
-    uploadToBuffer(ctx, r.vertices, vertices.data(), r.vertices.size);
-    uploadToBuffer(ctx, r.indices, indices.data(), r.indices.size);
-    uploadToBuffer(ctx, r.drawCommandTemplate, draws.data(), drawBytes);
-    uploadToBuffer(ctx, r.drawCommands, draws.data(), drawBytes);
     r.atlas = createTexture(ctx, {atlas.width, atlas.height}, VK_FORMAT_R8G8B8A8_SRGB, atlas.rgba.data());
     r.sampler = createLinearSampler(ctx);
 
-    r.terrainVertices =
-        createBuffer(ctx, scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex), storage, MemoryUse::Device);
+    deviceBuffer(r.terrainVertices, scenery.terrain.vertices.data(),
+                 scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex));
     r.terrainIndices =
         createBuffer(ctx, scenery.terrain.indices.size() * sizeof(uint32_t),
                      VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
-    uploadToBuffer(ctx, r.terrainVertices, scenery.terrain.vertices.data(), r.terrainVertices.size);
     uploadToBuffer(ctx, r.terrainIndices, scenery.terrain.indices.data(), r.terrainIndices.size);
     r.terrainIndexCount = uint32_t(scenery.terrain.indices.size());
     return r;
 }
 
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
-    for (Pipeline* p : {&r.cull, &r.tonemap, &r.sky, &r.ground, &r.instance})
+    for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance})
         destroyPipeline(ctx, *p);
-    for (Buffer* b : {&r.frameUniforms, &r.instances, &r.vertices, &r.indices, &r.drawCommands, &r.drawCommandTemplate,
-                      &r.visibleList, &r.stats, &r.statsReadback, &r.terrainVertices, &r.terrainIndices, &r.lodState})
+    for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,        &r.clumps,
+                      &r.plantVertices, &r.lodVertices, &r.indices,       &r.motionData,      &r.motionGraph,
+                      &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,    &r.drawCommandTemplate,
+                      &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices, &r.terrainIndices})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     if (r.sampler)
@@ -128,14 +347,98 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     r = FieldRenderer{};
 }
 
-void updateFrameUniforms(FieldRenderer& r, const gpu::GpuFrame& frame) {
-    gpu::GpuFrame f = frame;
+gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
+    if (state.width == 0 || state.height == 0)
+        throw Error("a frame of size " + std::to_string(state.width) + "x" + std::to_string(state.height));
+    gpu::GpuFrame f = makeCameraUniforms(state.camera, state.width, state.height, r.instanceCount);
     f.counts.y = r.meshCount;
     f.counts.w = r.lodCount;
     f.lodSwitchRadius = glm::vec4(r.lodParams.switchRadius[0], r.lodParams.switchRadius[1], r.lodParams.switchRadius[2],
                                   r.lodParams.switchRadius[3]);
     f.lodBand = glm::vec4(r.lodParams.band, r.lodParams.jitter, r.lodParams.hysteresis, 0.0f);
+
+    // Wind: waves and gusts travel along the direction the clumps were simulated in.
+    const WindState& w = state.wind;
+    const glm::vec2 dir(r.mirrorNormal.z, -r.mirrorNormal.x);
+    f.windWave = glm::vec4(dir.x, dir.y, w.baseLevel, w.waveAmplitude);
+    f.windShape = glm::vec4(1.0f / w.wavelength, float(w.waveSpeed / w.wavelength / kMotionRate), w.gustAmplitude,
+                            1.0f / w.gustSize);
+    f.windGust = glm::vec4(float(w.gustSpeed / w.gustSize / kMotionRate), 0.0f, 0.0f, 0.0f);
+
+    // Motion: one step per 1/30 s of scene time since the frame the states show.
+    const int64_t tick = int64_t(std::floor(std::max(state.seconds, 0.0) * kMotionRate));
+    uint32_t steps = 0;
+    if (r.lastTick >= 0 && tick > r.lastTick)
+        steps = uint32_t(std::min<int64_t>(tick - r.lastTick, gpu::kMaxMotionStepsPerFrame));
+    f.motion = gpu::uvec4(uint32_t(tick - int64_t(steps) + 1), steps, state.debugView, 0u);
+    f.counts.z = uint32_t(tick);
+
+    // Sky: the two frames of the day around the hour; the sun from them; exposure from the
+    // light on open ground, so a dim evening is shown brighter but night stays dark.
+    const sky::SkyBlend blend = sky::skyBlendAt(r.skyDay, state.hours);
+    const sky::SkyFrame& a = r.skyDay.frames[blend.first];
+    const sky::SkyFrame& b = r.skyDay.frames[blend.second];
+    const float t = float(blend.weight);
+    f.skyFrames = gpu::uvec4(blend.first, blend.second, r.skyDay.imageWidth, r.skyDay.imageHeight);
+    f.skyBlend = glm::vec4(t, r.windAzimuth, 0.0f, 0.0f);
+    const glm::vec3 sun = glm::mix(a.sunDirection, b.sunDirection, t);
+    f.sunDirection = glm::vec4(glm::length(sun) > 1e-6f ? glm::normalize(sun) : glm::vec3(0, 1, 0), 0.0f);
+    f.sunColor = glm::vec4(glm::mix(a.sunRadiance, b.sunRadiance, t), float(sky::kSunAngularRadius));
+    std::vector<float> sh(27);
+    for (size_t i = 0; i < sh.size(); ++i)
+        sh[i] = (1.0f - t) * a.sh[i] + t * b.sh[i];
+    const float irradiance = std::max(upwardIrradianceLuminance(sh), 0.02f * r.brightestIrradiance);
+    // White paper lying on the ground at 0.6 of the tone curve's linear range.
+    const float exposure = irradiance > 0.0f ? 0.6f * float(M_PI) / irradiance : 1.0f;
+    f.skyZenith = glm::vec4(0.0f, 0.0f, 0.0f, exposure);
+    // The haze the ground fades into: the backdrop's mean over its row just above the horizon.
+    glm::vec3 horizon(0.0f);
+    const uint32_t width = r.skyDay.imageWidth, row = r.skyDay.imageHeight / 2 - 1;
+    for (uint32_t x = 0; x < width; ++x)
+        for (int c = 0; c < 3; ++c) {
+            const size_t i = 3 * (size_t(row) * width + x) + c;
+            horizon[c] += ((1.0f - t) * a.image[i] + t * b.image[i]) / float(width);
+        }
+    f.skyHorizon = glm::vec4(horizon, 0.0f);
+    return f;
+}
+
+void updateFrame(FieldRenderer& r, const FrameState& state) {
+    const gpu::GpuFrame f = frameUniforms(r, state);
+    r.lastTick = int64_t(f.counts.z);
+    r.lightThisFrame =
+        !r.lightValid || f.skyFrames.x != r.litSky.x || f.skyFrames.y != r.litSky.y || f.skyBlend.x != r.litWeight;
+    if (r.lightThisFrame) {
+        r.litSky = f.skyFrames;
+        r.litWeight = f.skyBlend.x;
+        r.lightValid = true;
+    }
     std::memcpy(r.frameUniforms.mapped(), &f, sizeof(f));
+    r.lastFrame = f;
+    // What crosses to the GPU for this frame: the uniform block and the push constants recorded
+    // into its commands (the instance pipeline's mirror plane, the light pass's clump index).
+    r.uploadBytesLastFrame =
+        sizeof(f) + sizeof(r.mirrorNormal) + (r.lightThisFrame ? r.clumpCount * sizeof(uint32_t) : 0u);
+}
+
+void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
+    const int64_t target = int64_t(std::floor(std::max(state.seconds, 0.0) * kMotionRate));
+    if (r.lastTick < 0)
+        r.lastTick = 0; // the states as created show tick 0
+    while (r.lastTick < target) {
+        FrameState step = state;
+        const int64_t next = std::min<int64_t>(r.lastTick + gpu::kMaxMotionStepsPerFrame, target);
+        step.seconds = (double(next) + 0.5) / kMotionRate;
+        const gpu::GpuFrame f = frameUniforms(r, step);
+        std::memcpy(r.frameUniforms.mapped(), &f, sizeof(f));
+        submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+            barrier(cmd, access::kVertexShaderRead | access::kComputeReadWrite, access::kComputeReadWrite);
+            bindPipeline(ctx, cmd, r.animate, {r.frameUniforms, r.instances, r.clumps, r.motionGraph, r.motionStates});
+            dispatchCovering(cmd, r.animate, r.instanceCount);
+            barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite | access::kVertexShaderRead);
+        });
+        r.lastTick = next;
+    }
 }
 
 void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t, GpuTimer* timer) {
@@ -145,16 +448,34 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     // Reset the draws' instance counts (from the template) and the statistics. The previous frame
     // read them as indirect commands, in the vertex shader and as copy sources.
     barrier(cmd, access::kIndirectRead | access::kVertexShaderRead | access::kComputeReadWrite | access::kTransferRead,
-            access::kTransferWrite);
+            access::kTransferWrite | access::kComputeReadWrite);
     VkBufferCopy drawsRegion{0, 0, r.drawCommands.size};
     vkCmdCopyBuffer(cmd, r.drawCommandTemplate.buffer, r.drawCommands.buffer, 1, &drawsRegion);
     vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
-    barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
 
+    // Motion: the states step at the wind of this frame (the previous frame's vertex shader read
+    // them: ordered by the barrier above).
+    bindPipeline(ctx, cmd, r.animate, {r.frameUniforms, r.instances, r.clumps, r.motionGraph, r.motionStates});
+    dispatchCovering(cmd, r.animate, r.instanceCount);
+    if (timer)
+        markTimestamp(*timer, cmd, "animate");
+
+    barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
     bindPipeline(ctx, cmd, r.cull, {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState});
     dispatchCovering(cmd, r.cull, r.instanceCount);
     if (timer)
         markTimestamp(*timer, cmd, "cull");
+
+    // Light: every clump vertex and variant onto the sky, when the sky changed.
+    if (r.lightThisFrame) {
+        bindPipeline(ctx, cmd, r.light, {r.frameUniforms, r.clumps, r.transfer, r.skyData, r.vertexLight});
+        for (uint32_t c = 0; c < r.clumpCount; ++c) {
+            vkCmdPushConstants(cmd, r.light.layout, r.light.pushConstantStages, 0, sizeof(uint32_t), &c);
+            dispatchCovering(cmd, r.light, r.lightVertices[c]);
+        }
+    }
+    if (timer)
+        markTimestamp(*timer, cmd, "light");
 
     barrier(cmd, access::kComputeReadWrite, access::kIndirectRead | access::kVertexShaderRead);
     // The previous frame's tonemap read the HDR image and wrote the LDR image; the contents are
@@ -188,15 +509,16 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 
-    bindPipeline(ctx, cmd, r.sky, {r.frameUniforms});
+    bindPipeline(ctx, cmd, r.sky, {r.frameUniforms, r.skyData});
     vkCmdDraw(cmd, 3, 1, 0, 0);
 
-    bindPipeline(ctx, cmd, r.ground, {r.frameUniforms, r.terrainVertices});
+    bindPipeline(ctx, cmd, r.ground, {r.frameUniforms, r.terrainVertices, r.skyData});
     vkCmdBindIndexBuffer(cmd, r.terrainIndices.buffer, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cmd, r.terrainIndexCount, 1, 0, 0, 0);
 
     bindPipeline(ctx, cmd, r.instance,
-                 {r.frameUniforms, r.instances, r.visibleList, r.vertices, r.lodState,
+                 {r.frameUniforms, r.instances, r.visibleList, r.lodState, r.clumps, r.plantVertices, r.lodVertices,
+                  r.motionData, r.motionStates, r.vertexLight,
                   Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
     vkCmdPushConstants(cmd, r.instance.layout, r.instance.pushConstantStages, 0, sizeof(glm::vec4), &r.mirrorNormal);
     vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);

@@ -1,17 +1,22 @@
-// Draws a field of instances the GPU-driven way: per frame the CPU writes one uniform block;
-// a compute pass culls the instances into a compacted visible list, one range per mesh, and sets
-// each mesh's indirect draw's instanceCount; one multi-draw-indirect call reads them; a compute
-// pass tonemaps the result.
+// Draws a field of instances the GPU-driven way (DESIGN.md 3). Per frame the CPU writes one
+// uniform block (camera, wind, sky frames); everything per instance happens in compute passes:
 //
-// Per frame: reset counters (copy from a template) -> cull.comp -> sky, ground, indirect draws ->
-// tonemap.comp. GPU timestamps bracket "cull", "draw" and "tonemap".
+//   reset counters -> animate.comp (motion-graph steps at the wind level of each instance)
+//   -> cull.comp (frustum, LOD, compaction into per-(clump, LOD) draws)
+//   -> light.comp (only when the sky changed: every clump vertex's transfer onto the sky's SH)
+//   -> sky backdrop, terrain, one multi-draw-indirect of the clumps -> tonemap.comp.
+//
+// GPU timestamps bracket "animate", "cull", "light", "draw" and "tonemap".
 #pragma once
 
 #include "gpu_types.h"
 #include "lod_select.h"
 #include "mesh.h"
+#include "motion/motion_basis.h"
+#include "motion/motion_graph.h"
 #include "render/camera.h"
 #include "render/render_targets.h"
+#include "sky/sky_day.h"
 #include "vk/memory.h"
 #include "vk/pipeline.h"
 
@@ -22,8 +27,69 @@ namespace meadow {
 
 struct GpuTimer;
 
+// One level of detail of a clump: a subset of its vertices and triangles over them.
+struct FieldLod {
+    std::vector<uint32_t> vertices; // indices into FieldClump::mesh.vertices, in fetch order
+    std::vector<uint32_t> indices;  // triangles into `vertices`
+};
+
+// One clump (or rock) as the renderer draws it, in its own (clump) space.
+struct FieldClump {
+    Mesh mesh;                  // every vertex at the mean pose: positions, normals, atlas UVs
+    std::vector<FieldLod> lods; // FieldScenery::lodCount of them, LOD 0 first
+    MotionBasis motion;         // x̄ + U q per rod block; frames == 0: static
+    MotionGraph graph;          // the wind-indexed walk over motion.frames; nodeCount == 0: static
+    // Light transfer, SH order 3: per vertex 54 values (2 sides x RGB x 9) each with its gradient
+    // in the vertex's displacement, [vertex][value][4] (light/vertex_appearance.h). Empty: the
+    // unshadowed transfer of each side's normal (a plain diffuse surface).
+    std::vector<float> transfer;
+    // The instances' yaws fall in [yawLow, yawHigh]: light is projected for yawBins yaws in it,
+    // mirrored and not (2 yawBins variants per vertex), and each instance uses its bin's.
+    float yawLow = 0.0f, yawHigh = 0.0f;
+    uint32_t yawBins = 1;
+    glm::vec4 albedo{0.0f}; // w 1: this rgb instead of the atlas (rocks)
+};
+
+// A static clump of one mesh: every LOD the whole mesh, no motion, unshadowed light.
+FieldClump staticFieldClump(const Mesh& mesh, uint32_t lodCount);
+
+// What the field stands on, how its mirrored instances reflect, and its sky.
+struct FieldScenery {
+    Mesh terrain;                        // world space; drawn as is
+    glm::vec2 windDirection{1.0f, 0.0f}; // (x, z) the clumps were simulated in
+    // Levels of detail: every clump has lodCount; the cull pass picks each instance's with
+    // lodSelect; with 1, every instance draws its clump's one mesh.
+    uint32_t lodCount = 1;
+    gpu::GpuLodParams lod{};
+    sky::SkyDay sky; // SH order 3; at least one frame
+};
+
+// The wind at run time, in wind levels of the motion graph (0 calm .. levels - 1): waves that
+// travel downwind across the field and gusts (shaders/shared/wind_field.h).
+struct WindState {
+    float baseLevel = 1.2f;
+    float waveAmplitude = 0.8f; // levels
+    float wavelength = 30.0f;   // m
+    float waveSpeed = 6.0f;     // m/s
+    float gustAmplitude = 0.9f; // levels, added on top (value noise in [0, 1])
+    float gustSize = 8.0f;      // m between gust cells
+    float gustSpeed = 4.0f;     // m/s the gusts drift downwind
+};
+
+// What the CPU decides each frame.
+struct FrameState {
+    Camera camera;
+    uint32_t width = 0, height = 0;
+    double seconds = 0.0; // scene time; motion steps at 30 Hz of it
+    double hours = 12.0;  // local solar time: the sky
+    WindState wind;
+    uint32_t debugView = gpu::kDebugViewNone;
+};
+
 struct FieldRenderer {
+    Pipeline animate;
     Pipeline cull;
+    Pipeline light;
     Pipeline tonemap;
     Pipeline sky;
     Pipeline ground;
@@ -31,9 +97,18 @@ struct FieldRenderer {
 
     Buffer frameUniforms; // host-written each frame: the only per-frame upload
     Buffer instances;
-    Buffer vertices;
+    Buffer motionStates; // per instance gpu::GpuMotionState
+    Buffer lodState;     // per instance: its LOD coordinate, kept from frame to frame (lod_select.h)
+    Buffer clumps;       // gpu::GpuClump
+    Buffer plantVertices;
+    Buffer lodVertices;
     Buffer indices;
-    Buffer drawCommands;        // one per mesh
+    Buffer motionData;          // floats: per clump its basis rows, then its coordinates frame by frame
+    Buffer motionGraph;         // uints: per clump edgeStart, edgeTarget, edgeWeight, naturalNext
+    Buffer transfer;            // vec4: per clump vertex 54 x (T, dT/dx, dT/dy, dT/dz)
+    Buffer vertexLight;         // vec4: per clump vertex and light variant, kLightVec4sPerVertex
+    Buffer skyData;             // floats: per sky frame SH, sun and backdrop (field_renderer.cpp)
+    Buffer drawCommands;        // one per (clump, LOD)
     Buffer drawCommandTemplate; // the same with instanceCount 0: copied over them every frame
     Buffer visibleList;
     Buffer stats;
@@ -44,25 +119,28 @@ struct FieldRenderer {
 
     Buffer terrainVertices;
     Buffer terrainIndices;
-    Buffer lodState; // per instance: its LOD coordinate, kept from frame to frame (lod_select.h)
 
     uint32_t instanceCount = 0;
+    uint32_t clumpCount = 0;
     uint32_t meshCount = 0; // draw buckets: clumps x lodCount, clump-major
     uint32_t lodCount = 1;
     gpu::GpuLodParams lodParams{};
-    std::vector<uint32_t> meshTriangles; // per mesh
+    std::vector<uint32_t> meshTriangles; // per draw bucket
+    std::vector<uint32_t> lightVertices; // per clump: vertices x variants (light.comp threads)
     uint32_t terrainIndexCount = 0;
     glm::vec4 mirrorNormal{0.0f, 0.0f, 1.0f, 0.0f}; // push constant of the instance pipeline
-};
+    float windAzimuth = 0.0f;
 
-// What the field stands on and how its mirrored instances reflect.
-struct FieldScenery {
-    Mesh terrain;                        // world space; drawn as is
-    glm::vec2 windDirection{1.0f, 0.0f}; // (x, z) the clumps were simulated in
-    // Levels of detail: `meshes` hold lodCount meshes per clump (clump-major) and the cull pass
-    // picks each instance's with lodSelect; with 1, every instance draws its clump's one mesh.
-    uint32_t lodCount = 1;
-    gpu::GpuLodParams lod{};
+    // Host state carried from frame to frame.
+    sky::SkyDay skyDay; // CPU copy for the blend, exposure and horizon colour
+    float brightestIrradiance = 1.0f;
+    int64_t lastTick = -1;   // the motion tick the states show
+    bool lightValid = false; // vertexLight holds the current sky
+    gpu::uvec4 litSky{0u};   // the sky frames it was projected for
+    float litWeight = -1.0f; // and their weight
+    bool lightThisFrame = false;
+    uint64_t uploadBytesLastFrame = 0; // bytes the CPU wrote for the last frame (uniforms, push constants)
+    gpu::GpuFrame lastFrame{};
 };
 
 struct FieldStats {
@@ -72,15 +150,24 @@ struct FieldStats {
     std::vector<uint32_t> visiblePerMesh; // per draw bucket; a crossfading instance counts in two
 };
 
-// Every instance's `mesh` names a clump, whose meshes are meshes[mesh * lodCount + lod]; its
-// boundingRadius must hold every one of them as it moves.
-FieldRenderer createFieldRenderer(Context& context, std::span<const Mesh> meshes,
+// Every instance's `mesh` names a clump; its boundingRadius must hold every LOD of it as it moves.
+// Throws meadow::Error on inconsistent content (naming what).
+FieldRenderer createFieldRenderer(Context& context, std::span<const FieldClump> clumps,
                                   std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
                                   const FieldScenery& scenery);
 void destroyFieldRenderer(Context& context, FieldRenderer& renderer);
 
-// Writes the frame's uniform block. Call only when the previous frame's commands completed.
-void updateFrameUniforms(FieldRenderer& renderer, const gpu::GpuFrame& frame);
+// Writes the frame's uniform block from the camera, time, wind and sky (and the renderer's own
+// counts and LOD parameters), and decides whether the light pass runs. Call only when the
+// previous frame's commands completed.
+void updateFrame(FieldRenderer& renderer, const FrameState& state);
+
+// Plays the motion forward to state.seconds without drawing (animate passes only, waiting for
+// each): a first frame then shows the clumps already moving in the wind of `state`.
+void advanceMotion(Context& context, FieldRenderer& renderer, const FrameState& state);
+
+// The uniform block updateFrame would write (no side effects): for CPU references.
+gpu::GpuFrame frameUniforms(const FieldRenderer& renderer, const FrameState& state);
 
 // Records one frame into `targets`. At the end the HDR and LDR images are in GENERAL layout and
 // the statistics are on their way to statsReadback. `timer` may be null.

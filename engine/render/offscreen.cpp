@@ -30,10 +30,10 @@ void destroyOffscreen(Context& ctx, Offscreen& o) {
     o = Offscreen{};
 }
 
-FrameTimings renderOffscreenFrame(Context& ctx, FieldRenderer& renderer, Offscreen& o, const gpu::GpuFrame& frame) {
+FrameTimings renderOffscreenFrame(Context& ctx, FieldRenderer& renderer, Offscreen& o, const FrameState& state) {
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
-    updateFrameUniforms(renderer, frame);
+    updateFrame(renderer, state);
     VK_CHECK(vkResetCommandBuffer(o.cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;

@@ -24,8 +24,8 @@ struct FrameTimings {
     std::vector<PassTime> gpu;      // per pass
 };
 
-// Writes `frame` to the renderer's uniforms, records and submits one frame, and waits for it.
+// Writes the frame's uniforms from `state` (updateFrame), records and submits one frame, and waits for it.
 FrameTimings renderOffscreenFrame(Context& context, FieldRenderer& renderer, Offscreen& offscreen,
-                                  const gpu::GpuFrame& frame);
+                                  const FrameState& state);
 
 } // namespace meadow

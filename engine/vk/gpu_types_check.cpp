@@ -22,7 +22,17 @@ static_assert(offsetof(GpuFrame, counts) == 304);
 static_assert(offsetof(GpuFrame, lodScreen) == 320);
 static_assert(offsetof(GpuFrame, lodSwitchRadius) == 336);
 static_assert(offsetof(GpuFrame, lodBand) == 352);
-static_assert(sizeof(GpuFrame) == 368);
+static_assert(offsetof(GpuFrame, windWave) == 368);
+static_assert(offsetof(GpuFrame, windShape) == 384);
+static_assert(offsetof(GpuFrame, windGust) == 400);
+static_assert(offsetof(GpuFrame, motion) == 416);
+static_assert(offsetof(GpuFrame, skyFrames) == 432);
+static_assert(offsetof(GpuFrame, skyBlend) == 448);
+static_assert(sizeof(GpuFrame) == 464);
+
+static_assert(sizeof(GpuClump) == 96 && offsetof(GpuClump, albedo) == 80);
+static_assert(sizeof(GpuPlantVertex) == 48 && offsetof(GpuPlantVertex, motion) == 32);
+static_assert(sizeof(GpuLodVertex) == 8);
 
 static_assert(offsetof(GpuInstance, positionScale) == 0);
 static_assert(offsetof(GpuInstance, yaw) == 16);

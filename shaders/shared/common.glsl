@@ -10,22 +10,61 @@
         GpuFrame frame;                                             \
     };
 
-// Radiance of the analytic test sky in direction `dir` (unit, world, y up): a zenith-to-horizon
-// gradient plus a soft sun disc. Linear units; tonemapped at the end of the frame.
-vec3 skyRadiance(GpuFrame f, vec3 dir) {
-    float up = clamp(dir.y, 0.0, 1.0);
-    vec3 sky = mix(f.skyHorizon.rgb, f.skyZenith.rgb, sqrt(up));
-    float sunCos = max(dot(dir, f.sunDirection.xyz), 0.0);
-    sky += f.sunColor.rgb * f.sunDirection.w * (pow(sunCos, 2000.0) * 40.0 + pow(sunCos, 32.0) * 0.15);
-    return dir.y < 0.0 ? f.skyHorizon.rgb * 0.5 : sky;
-}
+const float kPi = 3.14159265358979;
 
-// Diffuse lighting: sun (Lambert, no shadows yet) plus a hemispherical sky term.
-vec3 diffuseLight(GpuFrame f, vec3 normal) {
-    float sun = max(dot(normal, f.sunDirection.xyz), 0.0) * f.sunDirection.w;
-    float hemi = 0.5 + 0.5 * normal.y;
-    vec3 ambient = mix(f.skyHorizon.rgb * 0.6, f.skyZenith.rgb, hemi);
-    return f.sunColor.rgb * sun + ambient;
-}
+// Unshadowed irradiance on a surface of unit normal n from RGB sky SH of order 3 (sh[3 i + c],
+// light/sh.h's basis: polar axis +y, azimuth from +z towards +x): the clamped cosine's zonal
+// coefficients pi, 2 pi / 3, pi / 4 times the basis at n (Ramamoorthi and Hanrahan 2001).
+// `sky(i)` must be a macro or function returning coefficient i's RGB.
+#define MEADOW_SH_IRRADIANCE(result, sky, n)                                                         \
+    {                                                                                                \
+        vec3 nn = (n);                                                                               \
+        float y[9];                                                                                  \
+        y[0] = 0.282095;                                                                             \
+        y[1] = 0.488603 * nn.x;                                                                      \
+        y[2] = 0.488603 * nn.y;                                                                      \
+        y[3] = 0.488603 * nn.z;                                                                      \
+        y[4] = 1.092548 * nn.x * nn.z;                                                               \
+        y[5] = 1.092548 * nn.x * nn.y;                                                               \
+        y[6] = 0.315392 * (3.0 * nn.y * nn.y - 1.0);                                                 \
+        y[7] = 1.092548 * nn.y * nn.z;                                                               \
+        y[8] = 0.546274 * (nn.z * nn.z - nn.x * nn.x);                                               \
+        const float band[9] = float[9](kPi, 2.0 * kPi / 3.0, 2.0 * kPi / 3.0, 2.0 * kPi / 3.0, kPi / 4.0, \
+                                       kPi / 4.0, kPi / 4.0, kPi / 4.0, kPi / 4.0);                    \
+        result = vec3(0.0);                                                                          \
+        for (int i = 0; i < 9; ++i)                                                                  \
+            result += band[i] * y[i] * sky(i);                                                       \
+    }
+
+// The sky backdrop at a world direction: the blended lat-long images of the two sky frames
+// (light/latlong.h's layout), bilinear, plus the sun's disk. `skyData` is the SkyData buffer.
+#define MEADOW_SKY_RADIANCE(result, skyData, f, dirIn)                                                \
+    {                                                                                                 \
+        vec3 dir = (dirIn);                                                                           \
+        uint width = (f).skyFrames.z, height = (f).skyFrames.w;                                       \
+        uint stride = kSkyFrameHeaderFloats + width * height * 3u;                                    \
+        float u = atan(dir.x, dir.z) / (2.0 * kPi);                                                   \
+        u = u < 0.0 ? u + 1.0 : u;                                                                    \
+        float v = acos(clamp(dir.y, -1.0, 1.0)) / kPi;                                                \
+        float px = u * float(width) - 0.5, py = clamp(v * float(height) - 0.5, 0.0, float(height - 1u)); \
+        float fx = floor(px), fy = floor(py);                                                         \
+        float ax = px - fx, ay = py - fy;                                                             \
+        uint x0 = uint(int(fx) + int(width)) % width, x1 = (x0 + 1u) % width;                         \
+        uint y0 = uint(fy), y1 = min(y0 + 1u, height - 1u);                                           \
+        result = vec3(0.0);                                                                           \
+        for (uint s = 0u; s < 2u; ++s) {                                                              \
+            uint base = (s == 0u ? (f).skyFrames.x : (f).skyFrames.y) * stride + kSkyFrameHeaderFloats; \
+            float ws = s == 0u ? 1.0 - (f).skyBlend.x : (f).skyBlend.x;                               \
+            uint i00 = base + 3u * (y0 * width + x0), i10 = base + 3u * (y0 * width + x1);            \
+            uint i01 = base + 3u * (y1 * width + x0), i11 = base + 3u * (y1 * width + x1);            \
+            for (uint c = 0u; c < 3u; ++c) {                                                          \
+                float top = mix(skyData[i00 + c], skyData[i10 + c], ax);                              \
+                float bottom = mix(skyData[i01 + c], skyData[i11 + c], ax);                           \
+                result[c] += ws * mix(top, bottom, ay);                                               \
+            }                                                                                         \
+        }                                                                                             \
+        if (dot(dir, (f).sunDirection.xyz) > cos((f).sunColor.w))                                     \
+            result += (f).sunColor.rgb;                                                               \
+    }
 
 #endif

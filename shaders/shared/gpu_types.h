@@ -20,7 +20,23 @@ using uint = std::uint32_t;
 
 // Workgroup sizes (compute shaders use these; the host reads them back from SPIR-V to check).
 MEADOW_CONST kCullGroupSize = 64;
+MEADOW_CONST kAnimateGroupSize = 64;
+MEADOW_CONST kLightGroupSize = 64;
 MEADOW_CONST kTonemapGroupSize = 8;
+
+// Motion steps the animate pass takes at most in one frame (a stalled frame skips motion rather
+// than stepping every instance hundreds of times).
+MEADOW_CONST kMaxMotionStepsPerFrame = 8;
+// Per clump vertex and light variant: irradiance of the front and back side in RGB, each with its
+// gradient in the vertex's displacement: (E, dE/dx, dE/dy, dE/dz) per side and channel.
+MEADOW_CONST kLightVec4sPerVertex = 6;
+// One frame of the sky day in the skyData buffer: floats [0, 27) the RGB SH (sh[3 i + c], order
+// 3), [28, 31) the sun direction, [32, 35) the sun disk's radiance, then from kSkyFrameHeaderFloats
+// the backdrop image (light/latlong.h layout, RGB).
+MEADOW_CONST kSkyFrameHeaderFloats = 36;
+// Debug views (GpuFrame::motion.z).
+MEADOW_CONST kDebugViewNone = 0;
+MEADOW_CONST kDebugViewLod = 1;
 
 // Per frame: the only data the CPU writes each frame (uniform buffer, set 0).
 struct GpuFrame {
@@ -28,14 +44,23 @@ struct GpuFrame {
     mat4 inverseViewProj;  // clip -> world, for the sky backdrop's view rays
     vec4 frustumPlanes[6]; // world-space planes (xyz normal pointing inside, w offset), normalised
     vec4 cameraPosition;   // xyz eye, w unused
-    vec4 sunDirection;     // xyz unit vector towards the sun, w sun intensity
-    vec4 sunColor;         // rgb linear, w unused
-    vec4 skyZenith;        // rgb linear radiance of the sky overhead, w exposure
-    vec4 skyHorizon;       // rgb linear radiance of the sky at the horizon, w unused
+    vec4 sunDirection;     // xyz unit vector towards the sun (blended between the sky frames), w unused
+    vec4 sunColor;         // rgb the sun disk's radiance, w its angular radius (radians)
+    vec4 skyZenith;        // rgb unused, w exposure (radiance -> display, before the tone curve)
+    vec4 skyHorizon;       // rgb radiance of the sky at the horizon (haze), w unused
     uvec4 counts;          // x instance count, y draw buckets, z frame index, w LODs per clump (1: no choice)
     vec4 lodScreen;        // x pixels per unit of radius at unit distance (0.5 height P[1][1]), yzw unused
     vec4 lodSwitchRadius;  // GpuLodParams::switchRadius (lod_select.h), px
     vec4 lodBand;          // x band, y jitter, z hysteresis (GpuLodParams), w unused
+    // The wind over the field (wind_field.h): travelling waves and gusts of wind level.
+    vec4 windWave;  // xy unit (x, z) direction the waves travel, z base level, w wave amplitude (levels)
+    vec4 windShape; // x 1 / wavelength (1/m), y wave cycles per motion tick, z gust amplitude (levels),
+                    // w gust cells per metre
+    vec4 windGust;  // x gust cells travelled per motion tick, yzw unused
+    uvec4 motion;   // x the first motion tick this frame steps to, y steps this frame, z debug view, w unused
+    // The sky: two frames of the library's day (SKYD) blended; light.comp projects onto it.
+    uvec4 skyFrames; // x first frame, y second frame, zw unused
+    vec4 skyBlend;   // x weight of the second frame, y azimuth of the simulation wind (mirror plane), zw unused
 };
 
 // One plant instance (storage buffer, read by cull and the vertex shader).
@@ -46,6 +71,43 @@ struct GpuInstance {
     float boundingRadius; // of the mesh's sphere (unscaled), centred half a radius above the base
     float tint;           // per-instance colour variation in [0, 1]
     uint mesh;            // which mesh (draw bucket) this instance uses
+};
+
+// One clump (or rock) of the field: where its data lie in the shared buffers. Static meshes have
+// no motion modes and a one-node motion graph.
+struct GpuClump {
+    uvec4 motion;     // x first vertex (GpuPlantVertex), y first coordinate (motionData), z coordinates
+                      // per frame, w frames
+    uvec4 graph;      // offsets into motionGraph: x edgeStart, y edgeTarget, z edgeWeight, w naturalNext
+    uvec4 graphSizes; // x edges, y wind levels, z blend frames, w unused
+    uvec4 light;      // x first vec4 in vertexLight, y light variants per mirror state (yaw bins),
+                      // z first value in transfer, w vertices
+    vec4 yawBins;     // x lowest yaw, y bins per radian (0: one bin), z bin width (radians), w unused
+    vec4 albedo;      // rgb constant albedo, w 1: use it instead of the atlas
+};
+
+// One vertex of a clump at its mean pose, with where its motion rows lie.
+struct GpuPlantVertex {
+    vec4 positionU; // xyz mean position (clump space), w texture u
+    vec4 normalV;   // xyz mean normal, w texture v
+    uvec4 motion;   // x first basis value in motionData (3 per mode), y the vertex's first coordinate
+                    // in a frame of q, z clump-local vertex index, w unused
+};
+
+// One vertex of a LOD mesh: the clump vertex it is and how many of its modes this LOD plays.
+struct GpuLodVertex {
+    uint vertex;  // global GpuPlantVertex index
+    uint rankLod; // low 16 bits: motion modes used at this LOD; high 16 bits: the LOD (debug view)
+};
+
+// One instance's walk, integers only (16 bytes; std430 and std140 compatible). The vertex shader
+// blends frame with blendFrom by the weight blendFramesLeft / blendFrames (1 right after a jump,
+// so the first blended frame equals the natural continuation and nothing pops).
+struct GpuMotionState {
+    uint frame;           // the motion frame (column of q) to show
+    uint blendFrom;       // the old path's frame while a jump is being blended
+    uint blendFramesLeft; // 0: no blend; counts down by one per step
+    uint counter;         // steps taken: the per-instance random stream position
 };
 
 // One mesh vertex, pulled from a storage buffer by gl_VertexIndex.

@@ -34,6 +34,8 @@
 #ifndef MEADOW_MOTION_STEP_H
 #define MEADOW_MOTION_STEP_H
 
+#include "gpu_types.h" // GpuMotionState
+
 #ifdef __cplusplus
 #include <cstdint>
 #include <span>
@@ -54,16 +56,6 @@ using uint = std::uint32_t;
 
 // naturalNext of a clip's last frame: there is no frame to continue with.
 MEADOW_MOTION_CONST kMotionNoFrame = 0xffffffffu;
-
-// One instance's walk, integers only (16 bytes; std430 and std140 compatible). The vertex shader
-// blends frame with blendFrom by the weight blendFramesLeft / blendFrames (1 right after a jump,
-// so the first blended frame equals the natural continuation and nothing pops).
-struct GpuMotionState {
-    uint frame;           // the motion frame (column of q) to show
-    uint blendFrom;       // the old path's frame while a jump is being blended
-    uint blendFramesLeft; // 0: no blend; counts down by one per step
-    uint counter;         // steps taken: the per-instance random stream position
-};
 
 #ifdef __cplusplus
 static_assert(sizeof(GpuMotionState) == 16, "GpuMotionState must stay four tightly packed uints");
@@ -106,8 +98,8 @@ MEADOW_MOTION_FN uint motionRandom(uint instanceSeed, uint counter) {
 // the last level). Picks one of the frame's edges with probability weight / sum of weights for
 // targetLevel; on a transition the old path keeps playing as blendFrom for blendFrames steps
 // while its weight fades, unless its clip ends first (then the blend stops: no frame to show).
-MEADOW_MOTION_FN void motionStep(MEADOW_MOTION_TABLES_PARAM MEADOW_MOTION_INOUT(GpuMotionState) state,
-                                 uint targetLevel, uint instanceSeed) {
+MEADOW_MOTION_FN void motionStep(MEADOW_MOTION_TABLES_PARAM MEADOW_MOTION_INOUT(GpuMotionState) state, uint targetLevel,
+                                 uint instanceSeed) {
     uint levelCount = MEADOW_MOTION_TABLES motionLevelCount();
     uint level = targetLevel < levelCount ? targetLevel : levelCount - 1u;
     uint node = state.frame;

@@ -27,12 +27,30 @@ case_args() {
       # frustum and the sun-colour path. Same tolerance reasoning as above.
       args=(render "$scene" --preset ci --size 160x90 --time-of-day 7.5 --camera -20,25,-20,0,0,0)
       threshold=0.04; percent=0.5 ;;
+    calm_noon)
+      # Noon, no wind: the sky's SH through the light pass, clumps near their calm frames.
+      args=(render "$scene" --preset ci --size 160x90 --time-of-day 12 --wind 0)
+      threshold=0.04; percent=0.5 ;;
+    windy_evening)
+      # Strong wind in low evening light: the animate pass walks the clumps into the top wind
+      # level for 2 s before the frame; a warm, dim sky and its exposure.
+      args=(render "$scene" --preset ci --size 160x90 --time-of-day 18.5 --wind 3)
+      threshold=0.04; percent=0.5 ;;
+    low_camera)
+      # Eye at knee height among the clumps: LOD 0 up close, blades and petals alpha-tested,
+      # both sides of the sheets lit, rocks.
+      args=(render "$scene" --preset ci --size 160x90 --time-of-day 10 --camera 0.3,0.45,-4,2,0.35,3)
+      threshold=0.04; percent=0.8 ;;
+    lod_colors)
+      # The LOD debug view: each clump in its level of detail's colour (red 0 .. violet 4).
+      args=(render "$scene" --preset ci --size 160x90 --debug-lod)
+      threshold=0.04; percent=0.5 ;;
     *) echo "golden.sh: unknown case '$1'" >&2; exit 2 ;;
   esac
 }
 
 if [ "${1:-}" = "--list" ]; then
-  echo field_afternoon field_morning_high
+  echo field_afternoon field_morning_high calm_noon windy_evening low_camera lod_colors
   exit 0
 fi
 

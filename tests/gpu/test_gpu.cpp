@@ -1,16 +1,21 @@
 // Compute passes on a real Vulkan device (lavapipe in CI) against their CPU references, plus
 // the core's upload/readback, timestamps and validation plumbing. ctest runs this binary at two
 // lavapipe vector widths (LP_NATIVE_VECTOR_WIDTH=128 and 256).
+#include "../motion/synthetic_motion.h"
 #include "core/error.h"
 #include "field_placement.h"
+#include "light/sh.h"
 #include "mesh.h"
 #include "render/cull_reference.h"
 #include "render/field_renderer.h"
 #include "render/offscreen.h"
+#include "sh_light.h"
+#include "sky/sky_day.h"
 #include "vk/barriers.h"
 #include "vk/context.h"
 #include "vk/memory.h"
 #include "vk/pipeline.h"
+#include "wind_field.h"
 
 #include <algorithm>
 #include <cmath>
@@ -45,12 +50,56 @@ Context* Gpu::context = nullptr;
 std::vector<Mesh> testMeshes() {
     return {makeTuftMesh(9), makeTuftMesh(5), makeTuftMesh(3)};
 }
+std::vector<FieldClump> staticClumps(const std::vector<Mesh>& meshes) {
+    std::vector<FieldClump> clumps;
+    for (const Mesh& mesh : meshes)
+        clumps.push_back(staticFieldClump(mesh, 1));
+    return clumps;
+}
+
+// A clump whose LODs are separate meshes: its vertices are all of theirs, each LOD its own range.
+FieldClump clumpOfLods(const std::vector<Mesh>& lods) {
+    FieldClump clump = staticFieldClump(lods[0], 1);
+    clump.mesh.vertices.clear();
+    clump.lods.clear();
+    for (const Mesh& mesh : lods) {
+        FieldLod lod;
+        for (size_t v = 0; v < mesh.vertices.size(); ++v)
+            lod.vertices.push_back(uint32_t(clump.mesh.vertices.size() + v));
+        lod.indices = mesh.indices;
+        clump.mesh.vertices.insert(clump.mesh.vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+        clump.lods.push_back(std::move(lod));
+    }
+    return clump;
+}
+
+// One frame of the analytic sky, at 10 h.
+sky::SkyDay testSky() {
+    sky::SkyParams params = sky::skyParamsForPreset("ci");
+    sky::SkyDay day;
+    day.shOrder = params.shOrder;
+    day.imageWidth = params.imageWidth;
+    day.imageHeight = params.imageHeight;
+    day.frames.push_back(sky::buildSkyFrame(params, 10.0));
+    return day;
+}
+
+FrameState frameState(const Camera& camera, uint32_t width, uint32_t height) {
+    FrameState state;
+    state.camera = camera;
+    state.width = width;
+    state.height = height;
+    state.hours = 10.0;
+    return state;
+}
 RgbaImage testAtlas() {
     return {4, 4, std::vector<uint8_t>(64, 200)};
 }
 
 FieldScenery testScenery() {
-    return {makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(20.0f), 5.0f, 2.0f), glm::vec2(1.0f, 0.0f)};
+    FieldScenery scenery{makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(20.0f), 5.0f, 2.0f), glm::vec2(1.0f, 0.0f)};
+    scenery.sky = testSky();
+    return scenery;
 }
 
 // Instances scattered in a box around the origin, some huge, some tiny, spread over three
@@ -73,6 +122,33 @@ std::vector<gpu::GpuInstance> scatter(uint32_t count, uint32_t seed) {
             inst.positionScale.w = -inst.positionScale.w; // mirrored: the same sphere
     }
     return out;
+}
+
+// A moving clump: the tuft with a synthetic motion library (four wind levels of damped,
+// gust-driven coordinates, as a simulated clump's PCA coordinates behave), its real motion graph,
+// and random basis rows in one block of `dims` modes (LODs play 6, 4, 2, 1, 1 of them).
+FieldClump movingClump(uint32_t dims = 6) {
+    FieldClump clump = staticFieldClump(makeTuftMesh(7), kLodCount);
+    test::SyntheticMotion synthetic = test::makeSyntheticMotion(4, 2, 90, dims, 5);
+    clump.graph = buildMotionGraph(synthetic.q, synthetic.clips, MotionGraphParams{});
+    MotionBasis& m = clump.motion;
+    m.frames = uint32_t(synthetic.q.cols());
+    const uint32_t ranks[kLodCount] = {dims, 4, 2, 1, 1};
+    for (uint32_t l = 0; l < kLodCount; ++l)
+        m.lodModes[l] = std::min(ranks[l], dims);
+    m.blocks.push_back(MotionBlock{0, {m.lodModes[0], m.lodModes[1], m.lodModes[2], m.lodModes[3], m.lodModes[4]}});
+    m.vertexBlock.assign(clump.mesh.vertices.size(), 0);
+    uint64_t seed = 99;
+    for (size_t i = 0; i < clump.mesh.vertices.size() * dims * 3; ++i) {
+        seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+        m.basis.push_back((float(seed >> 40) / float(1 << 24) - 0.5f) * 0.1f); // metres per unit of q
+    }
+    for (Eigen::Index f = 0; f < synthetic.q.cols(); ++f)
+        for (uint32_t k = 0; k < dims; ++k)
+            m.coords.push_back(synthetic.q(k, f));
+    m.relativeErrorPerMode.assign(dims + 1, 0.0);
+    m.finish("test clump");
+    return clump;
 }
 
 } // namespace
@@ -121,7 +197,8 @@ TEST_F(Gpu, SubAllocatorSharesBlocksAndReturnsMemory) {
 
 TEST_F(Gpu, CullPassMatchesCpuReference) {
     std::vector<gpu::GpuInstance> instances = scatter(20011, 7); // not a multiple of the group size
-    FieldRenderer renderer = createFieldRenderer(*context, testMeshes(), instances, testAtlas(), testScenery());
+    FieldRenderer renderer =
+        createFieldRenderer(*context, staticClumps(testMeshes()), instances, testAtlas(), testScenery());
     Offscreen offscreen = createOffscreen(*context, {64, 48});
 
     struct View {
@@ -138,9 +215,9 @@ TEST_F(Gpu, CullPassMatchesCpuReference) {
         camera.target = v.target;
         camera.fovYDegrees = v.fov;
         camera.farCull = v.farCull;
-        gpu::GpuFrame frame =
-            makeFrameUniforms(camera, 64, 48, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.meshCount, 0);
-        renderOffscreenFrame(*context, renderer, offscreen, frame);
+        renderOffscreenFrame(*context, renderer, offscreen, frameState(camera, 64, 48));
+        gpu::GpuFrame frame; // exactly what the GPU saw
+        std::memcpy(&frame, renderer.frameUniforms.mapped(), sizeof(frame));
 
         std::vector<gpu::GpuDrawIndexedCommand> draws(renderer.meshCount);
         readbackBuffer(*context, renderer.drawCommands, draws.data(), draws.size() * sizeof(draws[0]));
@@ -202,14 +279,17 @@ TEST_F(Gpu, CullPassMatchesCpuReference) {
 // coordinate implies: one per instance on a plateau, two (the second marked) while crossfading.
 TEST_F(Gpu, LodCullMatchesCpuReference) {
     std::vector<gpu::GpuInstance> instances = scatter(20011, 11);
-    std::vector<Mesh> meshes;
-    for (uint32_t clump = 0; clump < 3; ++clump)
+    std::vector<FieldClump> clumps;
+    for (uint32_t clump = 0; clump < 3; ++clump) {
+        std::vector<Mesh> lods;
         for (uint32_t lod = 0; lod < kLodCount; ++lod)
-            meshes.push_back(makeTuftMesh(9 - 2 * lod, 5));
+            lods.push_back(makeTuftMesh(9 - 2 * lod, 5));
+        clumps.push_back(clumpOfLods(lods));
+    }
     FieldScenery scenery = testScenery();
     scenery.lodCount = kLodCount;
     scenery.lod = {{120.0f, 50.0f, 20.0f, 8.0f}, 0.1f, 0.2f, 0.05f, 0.0f};
-    FieldRenderer renderer = createFieldRenderer(*context, meshes, instances, testAtlas(), scenery);
+    FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
     Offscreen offscreen = createOffscreen(*context, {160, 120});
     const glm::vec3 eyes[] = {{0, 2, 0}, {-150, 30, -150}, {0, 2.2f, 0.4f}, {50, 5, 20}};
     size_t crossfading = 0, lodsSeen = 0;
@@ -220,9 +300,7 @@ TEST_F(Gpu, LodCullMatchesCpuReference) {
         camera.farCull = 400.0f;
         std::vector<float> before(instances.size()), after(instances.size());
         readbackBuffer(*context, renderer.lodState, before.data(), before.size() * 4);
-        renderOffscreenFrame(
-            *context, renderer, offscreen,
-            makeFrameUniforms(camera, 160, 120, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.meshCount, 0));
+        renderOffscreenFrame(*context, renderer, offscreen, frameState(camera, 160, 120));
         gpu::GpuFrame frame; // exactly what the GPU saw, LOD fields included
         std::memcpy(&frame, renderer.frameUniforms.mapped(), sizeof(frame));
         readbackBuffer(*context, renderer.lodState, after.data(), after.size() * 4);
@@ -271,16 +349,17 @@ TEST_F(Gpu, LodCullMatchesCpuReference) {
 
 TEST_F(Gpu, TimestampsBracketEveryPass) {
     std::vector<gpu::GpuInstance> instances = scatter(1000, 3);
-    FieldRenderer renderer = createFieldRenderer(*context, testMeshes(), instances, testAtlas(), testScenery());
+    FieldRenderer renderer =
+        createFieldRenderer(*context, staticClumps(testMeshes()), instances, testAtlas(), testScenery());
     Offscreen offscreen = createOffscreen(*context, {32, 32});
     Camera camera;
-    FrameTimings t = renderOffscreenFrame(
-        *context, renderer, offscreen,
-        makeFrameUniforms(camera, 32, 32, skyForTimeOfDay(12.0f), renderer.instanceCount, renderer.meshCount, 0));
-    ASSERT_EQ(t.gpu.size(), 3u);
-    EXPECT_EQ(t.gpu[0].label, "cull");
-    EXPECT_EQ(t.gpu[1].label, "draw");
-    EXPECT_EQ(t.gpu[2].label, "tonemap");
+    FrameTimings t = renderOffscreenFrame(*context, renderer, offscreen, frameState(camera, 32, 32));
+    ASSERT_EQ(t.gpu.size(), 5u);
+    EXPECT_EQ(t.gpu[0].label, "animate");
+    EXPECT_EQ(t.gpu[1].label, "cull");
+    EXPECT_EQ(t.gpu[2].label, "light");
+    EXPECT_EQ(t.gpu[3].label, "draw");
+    EXPECT_EQ(t.gpu[4].label, "tonemap");
     for (const PassTime& p : t.gpu) {
         EXPECT_GE(p.milliseconds, 0.0) << p.label;
         EXPECT_LT(p.milliseconds, 10000.0) << p.label;
@@ -310,15 +389,15 @@ TEST_F(Gpu, MirroredInstanceMatchesTheReflectedMesh) {
         inst.yaw = 0.7f;
         inst.boundingRadius = mesh.boundingRadius;
         inst.tint = 0.5f;
-        FieldRenderer renderer =
-            createFieldRenderer(*context, std::vector<Mesh>{mesh}, std::vector<gpu::GpuInstance>{inst}, testAtlas(),
-                                {makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(4.0f), 1.0f, 1.0f), wind});
+        FieldScenery scenery{makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(4.0f), 1.0f, 1.0f), wind};
+        scenery.sky = testSky();
+        FieldRenderer renderer = createFieldRenderer(*context, staticClumps({mesh}),
+                                                     std::vector<gpu::GpuInstance>{inst}, testAtlas(), scenery);
         Offscreen offscreen = createOffscreen(*context, {96, 96});
         Camera camera;
         camera.eye = glm::vec3(0.4f, 0.9f, -2.2f);
         camera.target = glm::vec3(0.3f, 0.35f, -0.2f);
-        renderOffscreenFrame(*context, renderer, offscreen,
-                             makeFrameUniforms(camera, 96, 96, skyForTimeOfDay(10.0f), 1, 1, 0));
+        renderOffscreenFrame(*context, renderer, offscreen, frameState(camera, 96, 96));
         std::vector<uint8_t> pixels = readLdrPixels(*context, offscreen.targets);
         destroyOffscreen(*context, offscreen);
         destroyFieldRenderer(*context, renderer);
@@ -336,6 +415,214 @@ TEST_F(Gpu, MirroredInstanceMatchesTheReflectedMesh) {
     }
     EXPECT_LE(differing, mirrored.size() / 500);
     EXPECT_GT(differingFromPlain, mirrored.size() / 100); // the mirror changes the picture
+}
+
+// animate.comp against the CPU reference: the same wind level at every instance and tick
+// (wind_field.h) and the same motion-graph walk (motion_step.h), bit for bit, over frames that
+// take one, several and (capped) many motion steps. Static clumps hold still.
+TEST_F(Gpu, AnimatePassMatchesCpuReference) {
+    std::vector<FieldClump> clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount), movingClump(4)};
+    std::vector<gpu::GpuInstance> instances = scatter(3001, 17);
+    for (gpu::GpuInstance& inst : instances)
+        inst.mesh %= 3;
+    FieldScenery scenery = testScenery();
+    scenery.lodCount = kLodCount;
+    scenery.lod = {{120.0f, 50.0f, 20.0f, 8.0f}, 0.1f, 0.2f, 0.05f, 0.0f};
+    FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
+    Offscreen offscreen = createOffscreen(*context, {32, 24});
+
+    std::vector<gpu::GpuMotionState> cpu(instances.size());
+    readbackBuffer(*context, renderer.motionStates, cpu.data(), cpu.size() * sizeof(cpu[0]));
+    std::vector<gpu::MotionTables> tables;
+    for (const FieldClump& clump : clumps)
+        tables.push_back(makeMotionTables(clump.graph));
+
+    FrameState state = frameState(Camera{}, 32, 24);
+    state.wind.baseLevel = 1.5f;
+    state.wind.waveAmplitude = 1.5f;
+    state.wind.wavelength = 60.0f;
+    state.wind.gustAmplitude = 1.0f;
+    const double times[] = {0.0, 0.04, 0.07, 0.2, 0.21, 0.5, 0.9, 0.95, 3.0, 3.1, 3.2, 3.4};
+    std::vector<uint32_t> levelsSeen(4, 0);
+    uint32_t stepsTaken = 0;
+    for (double seconds : times) {
+        state.seconds = seconds;
+        renderOffscreenFrame(*context, renderer, offscreen, state);
+        gpu::GpuFrame frame; // exactly what the GPU saw
+        std::memcpy(&frame, renderer.frameUniforms.mapped(), sizeof(frame));
+        stepsTaken += frame.motion.y;
+        for (size_t i = 0; i < instances.size(); ++i) {
+            const uint32_t c = instances[i].mesh;
+            if (clumps[c].motion.frames == 0)
+                continue;
+            for (uint32_t s = 0; s < frame.motion.y; ++s) {
+                const float level = gpu::windLevelAt(frame, instances[i].positionScale.x, instances[i].positionScale.z,
+                                                     frame.motion.x + s);
+                const uint32_t target = gpu::windTargetLevel(level, tables[c].levelCount);
+                levelsSeen[target]++;
+                gpu::motionStep(tables[c], cpu[i], target, uint32_t(i));
+            }
+        }
+        std::vector<gpu::GpuMotionState> gpuStates(instances.size());
+        readbackBuffer(*context, renderer.motionStates, gpuStates.data(), gpuStates.size() * sizeof(gpuStates[0]));
+        size_t differing = 0;
+        for (size_t i = 0; i < instances.size(); ++i) {
+            if (clumps[instances[i].mesh].motion.frames == 0) // holds its one frame
+                differing += gpuStates[i].frame != 0u || gpuStates[i].blendFramesLeft != 0u;
+            else
+                differing += std::memcmp(&gpuStates[i], &cpu[i], sizeof(cpu[i])) != 0;
+        }
+        ASSERT_EQ(differing, 0u) << "instances whose motion state differs after t = " << seconds << " s";
+    }
+    // The frames took 0, 1, several and the capped 8 steps; the wind spanned every level.
+    EXPECT_GT(stepsTaken, 20u);
+    for (uint32_t level = 0; level < 4; ++level)
+        EXPECT_GT(levelsSeen[level], 0u) << "wind level " << level << " never targeted";
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
+}
+
+// The vertex shader's x̄ + U q, blended across a graph jump, draws the same picture as the CPU's
+// reconstruction of that blended pose drawn as a static mesh.
+TEST_F(Gpu, VertexShaderPlaysTheMotion) {
+    const FieldClump moving = movingClump();
+    gpu::GpuInstance inst{};
+    inst.positionScale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    inst.boundingRadius = 1.0f;
+    const uint32_t frameA = 40, frameB = 200, left = 2;
+    const float w = float(left) / float(moving.graph.blendFrames);
+    Camera camera;
+    camera.eye = glm::vec3(0.0f, 0.5f, -1.4f);
+    camera.target = glm::vec3(0.0f, 0.3f, 0.0f);
+    auto render = [&](const FieldClump& clump, const gpu::GpuMotionState* state) {
+        FieldRenderer renderer = createFieldRenderer(*context, std::vector<FieldClump>{clump},
+                                                     std::vector<gpu::GpuInstance>{inst}, testAtlas(), testScenery());
+        if (state)
+            uploadToBuffer(*context, renderer.motionStates, state, sizeof(*state));
+        Offscreen offscreen = createOffscreen(*context, {96, 96});
+        renderOffscreenFrame(*context, renderer, offscreen, frameState(camera, 96, 96)); // first frame: no step
+        std::vector<uint8_t> pixels = readLdrPixels(*context, offscreen.targets);
+        destroyOffscreen(*context, offscreen);
+        destroyFieldRenderer(*context, renderer);
+        return pixels;
+    };
+    FieldClump single = moving;
+    single.lods.resize(1);
+    const gpu::GpuMotionState state{frameA, frameB, left, 0};
+    // The blended pose on the CPU, as a static clump (unshadowed light: no gradient either way).
+    Mesh posed = moving.mesh;
+    for (uint32_t v = 0; v < posed.vertices.size(); ++v) {
+        const glm::vec3 d =
+            (1.0f - w) * moving.motion.displacement(v, frameA) + w * moving.motion.displacement(v, frameB);
+        posed.vertices[v].positionU += glm::vec4(d, 0.0f);
+    }
+    const std::vector<uint8_t> gpuPose = render(single, &state);
+    const std::vector<uint8_t> cpuPose = render(staticFieldClump(posed, 1), nullptr);
+    const std::vector<uint8_t> rest = render(staticFieldClump(moving.mesh, 1), nullptr);
+    size_t differing = 0, differingFromRest = 0;
+    for (size_t i = 0; i < gpuPose.size(); ++i) {
+        differing += std::abs(int(gpuPose[i]) - int(cpuPose[i])) > 8;
+        differingFromRest += std::abs(int(gpuPose[i]) - int(rest[i])) > 8;
+    }
+    EXPECT_LE(differing, gpuPose.size() / 500);
+    EXPECT_GT(differingFromRest, gpuPose.size() / 200); // the pose is not the mean
+}
+
+// light.comp against an independent CPU evaluation: a static clump's unshadowed transfer lit by
+// the sky must give, for every yaw bin and mirror, the irradiance of the world sky on the
+// vertex's normal as the instance turns it (clamped cosine in SH at R M n); a transfer with
+// gradients gives T̄ and G dotted with the sky in the clump's frame (sh_light.h).
+TEST_F(Gpu, LightPassMatchesCpuReference) {
+    const glm::vec2 wind = glm::normalize(glm::vec2(1.0f, 0.25f));
+    FieldClump plain = staticFieldClump(makeTuftMesh(5), 1);
+    plain.yawLow = -0.3f;
+    plain.yawHigh = 0.5f;
+    plain.yawBins = 3;
+    FieldClump graded = plain;
+    uint64_t seed = 5;
+    for (size_t i = 0; i < graded.mesh.vertices.size() * 216; ++i) {
+        seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+        graded.transfer.push_back(float(seed >> 40) / float(1 << 24) - 0.3f);
+    }
+    FieldScenery scenery = testScenery();
+    scenery.windDirection = wind;
+    gpu::GpuInstance inst{};
+    inst.positionScale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    inst.boundingRadius = 1.0f;
+    FieldRenderer renderer = createFieldRenderer(*context, std::vector<FieldClump>{plain, graded},
+                                                 std::vector<gpu::GpuInstance>{inst}, testAtlas(), scenery);
+    Offscreen offscreen = createOffscreen(*context, {16, 16});
+    renderOffscreenFrame(*context, renderer, offscreen, frameState(Camera{}, 16, 16));
+    std::vector<glm::vec4> light(renderer.vertexLight.size / sizeof(glm::vec4));
+    readbackBuffer(*context, renderer.vertexLight, light.data(), renderer.vertexLight.size);
+
+    const std::vector<float>& sky = scenery.sky.frames[0].sh;
+    std::vector<glm::dvec3> skyRgb(9);
+    for (int i = 0; i < 9; ++i)
+        skyRgb[i] = glm::dvec3(sky[3 * i], sky[3 * i + 1], sky[3 * i + 2]);
+    const double band[9] = {M_PI,     2 * M_PI / 3, 2 * M_PI / 3, 2 * M_PI / 3, M_PI / 4,
+                            M_PI / 4, M_PI / 4,     M_PI / 4,     M_PI / 4};
+    const glm::dvec3 mirrorNormal(-wind.y, 0.0, wind.x);
+    const uint32_t variants = 2 * plain.yawBins, vertices = uint32_t(plain.mesh.vertices.size());
+    double worst = 0.0, scale = 0.0;
+    for (uint32_t v = 0; v < vertices; ++v)
+        for (uint32_t variant = 0; variant < variants; ++variant) {
+            const bool mirrored = variant >= plain.yawBins;
+            const double yaw =
+                plain.yawLow + (variant % plain.yawBins + 0.5) * (plain.yawHigh - plain.yawLow) / plain.yawBins;
+            glm::dvec3 n = glm::normalize(glm::dvec3(plain.mesh.vertices[v].normalV));
+            if (mirrored)
+                n -= 2.0 * glm::dot(n, mirrorNormal) * mirrorNormal;
+            const glm::dvec3 turned(std::cos(yaw) * n.x + std::sin(yaw) * n.z, n.y,
+                                    -std::sin(yaw) * n.x + std::cos(yaw) * n.z);
+            for (uint32_t side = 0; side < 2; ++side) {
+                double y[9];
+                sh::evaluate(3, side == 0 ? turned : -turned, y);
+                glm::dvec3 e(0.0);
+                for (int i = 0; i < 9; ++i)
+                    e += band[i] * y[i] * skyRgb[i];
+                for (uint32_t c = 0; c < 3; ++c) {
+                    const glm::vec4 g =
+                        light[(size_t(v) * variants + variant) * gpu::kLightVec4sPerVertex + side * 3 + c];
+                    worst = std::max(worst, std::abs(double(g.x) - e[c]));
+                    scale = std::max(scale, std::abs(e[c]));
+                    EXPECT_EQ(g.y, 0.0f);
+                }
+            }
+        }
+    EXPECT_GT(scale, 0.01);
+    EXPECT_LT(worst, 1e-4 * scale) << "irradiance of the unshadowed clump";
+
+    // The graded clump: T̄ and the gradient, per side and channel, against sh_light.h on the CPU.
+    const size_t base = size_t(vertices) * variants * gpu::kLightVec4sPerVertex;
+    worst = 0.0;
+    scale = 0.0;
+    for (uint32_t v = 0; v < vertices; ++v)
+        for (uint32_t variant = 0; variant < variants; ++variant) {
+            const bool mirrored = variant >= plain.yawBins;
+            const float yaw = plain.yawLow + (float(variant % plain.yawBins) + 0.5f) * (plain.yawHigh - plain.yawLow) /
+                                                 float(plain.yawBins);
+            float in[27], local[27];
+            std::copy(sky.begin(), sky.end(), in);
+            gpu::shSkyToClumpFrame(in, gpu::shClumpFrameSign(mirrored),
+                                   gpu::shClumpFrameDelta(yaw, mirrored, std::atan2(wind.x, wind.y)), local);
+            for (uint32_t sc = 0; sc < 6; ++sc) {
+                glm::dvec4 expected(0.0);
+                for (uint32_t i = 0; i < 9; ++i)
+                    for (uint32_t k = 0; k < 4; ++k)
+                        expected[k] +=
+                            double(graded.transfer[(size_t(v) * 54 + sc * 9 + i) * 4 + k]) * local[3 * i + sc % 3];
+                const glm::vec4 g = light[base + (size_t(v) * variants + variant) * gpu::kLightVec4sPerVertex + sc];
+                for (int k = 0; k < 4; ++k) {
+                    worst = std::max(worst, std::abs(double(g[k]) - expected[k]));
+                    scale = std::max(scale, std::abs(expected[k]));
+                }
+            }
+        }
+    EXPECT_GT(scale, 0.01);
+    EXPECT_LT(worst, 1e-4 * scale) << "transfer with gradients";
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
 }
 
 // The validation plumbing itself: a real hazard must be reported, or the validation tests

@@ -8,7 +8,7 @@ using namespace meadow;
 namespace {
 
 gpu::GpuFrame frameFor(const Camera& camera, uint32_t width = 1600, uint32_t height = 900) {
-    return makeFrameUniforms(camera, width, height, skyForTimeOfDay(12.0f), 1000000, 0, 0);
+    return makeCameraUniforms(camera, width, height, 1000000);
 }
 
 gpu::GpuInstance at(glm::vec3 p, float radius = 0.5f, float scale = 1.0f) {

@@ -1,0 +1,51 @@
+#version 460
+// Light pass (DESIGN.md 3): runs when the sky changes. One thread per clump vertex and light
+// variant: the blended sky's SH, turned into the clump's frame for the variant's yaw and mirror
+// (sh_light.h), dotted with the vertex's transfer and its gradient. What it writes is all the
+// vertex shader needs: irradiance = E + dE/dd . d for its displacement d.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+#include "sh_light.h"
+
+layout(local_size_x = kLightGroupSize) in;
+
+MEADOW_FRAME_BLOCK(0, 0)
+layout(set = 0, binding = 1, std430) readonly buffer Clumps { GpuClump clumps[]; };
+layout(set = 0, binding = 2, std430) readonly buffer Transfer { vec4 transfer[]; };
+layout(set = 0, binding = 3, std430) readonly buffer SkyData { float skyData[]; };
+layout(set = 0, binding = 4, std430) writeonly buffer VertexLight { vec4 vertexLight[]; };
+layout(push_constant) uniform LightParams { uint clumpIndex; };
+
+void main() {
+    GpuClump clump = clumps[clumpIndex];
+    uint variants = 2u * clump.light.y;
+    uint thread = gl_GlobalInvocationID.x;
+    uint vertex = thread / variants, variant = thread % variants;
+    if (vertex >= clump.light.w)
+        return;
+
+    // The sky: two frames of the day, blended.
+    uint stride = kSkyFrameHeaderFloats + frame.skyFrames.z * frame.skyFrames.w * 3u;
+    uint a = frame.skyFrames.x * stride, b = frame.skyFrames.y * stride;
+    float w = frame.skyBlend.x;
+    float sky[27];
+    for (uint i = 0u; i < 27u; ++i)
+        sky[i] = mix(skyData[a + i], skyData[b + i], w);
+
+    // Into the clump's frame for this variant: the centre of its yaw bin, mirrored or not.
+    uint bins = clump.light.y;
+    bool mirrored = variant >= bins;
+    float yaw = clump.yawBins.x + (float(variant % bins) + 0.5) * clump.yawBins.z;
+    float local[27];
+    shSkyToClumpFrame(sky, shClumpFrameSign(mirrored), shClumpFrameDelta(yaw, mirrored, frame.skyBlend.y), local);
+
+    uint t = clump.light.z + vertex * 54u;
+    uint out0 = clump.light.x + (vertex * variants + variant) * kLightVec4sPerVertex;
+    for (uint sc = 0u; sc < 6u; ++sc) { // side-major, then channel (transfer.h)
+        uint c = sc % 3u;
+        vec4 sum = vec4(0.0);
+        for (uint i = 0u; i < 9u; ++i)
+            sum += transfer[t + sc * 9u + i] * local[3u * i + c];
+        vertexLight[out0 + sc] = sum;
+    }
+}
