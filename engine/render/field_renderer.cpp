@@ -413,6 +413,8 @@ void updateFrame(FieldRenderer& r, const FrameState& state) {
         r.litWeight = f.skyBlend.x;
         r.lightValid = true;
     }
+    r.cullThisFrame = !(state.freezeCulling && r.culledOnce);
+    r.culledOnce = true;
     std::memcpy(r.frameUniforms.mapped(), &f, sizeof(f));
     r.lastFrame = f;
     // What crosses to the GPU for this frame: the uniform block and the push constants recorded
@@ -449,9 +451,11 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     // read them as indirect commands, in the vertex shader and as copy sources.
     barrier(cmd, access::kIndirectRead | access::kVertexShaderRead | access::kComputeReadWrite | access::kTransferRead,
             access::kTransferWrite | access::kComputeReadWrite);
-    VkBufferCopy drawsRegion{0, 0, r.drawCommands.size};
-    vkCmdCopyBuffer(cmd, r.drawCommandTemplate.buffer, r.drawCommands.buffer, 1, &drawsRegion);
-    vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
+    if (r.cullThisFrame) {
+        VkBufferCopy drawsRegion{0, 0, r.drawCommands.size};
+        vkCmdCopyBuffer(cmd, r.drawCommandTemplate.buffer, r.drawCommands.buffer, 1, &drawsRegion);
+        vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
+    }
 
     // Motion: the states step at the wind of this frame (the previous frame's vertex shader read
     // them: ordered by the barrier above).
@@ -461,8 +465,11 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
         markTimestamp(*timer, cmd, "animate");
 
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
-    bindPipeline(ctx, cmd, r.cull, {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState});
-    dispatchCovering(cmd, r.cull, r.instanceCount);
+    if (r.cullThisFrame) {
+        bindPipeline(ctx, cmd, r.cull,
+                     {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState});
+        dispatchCovering(cmd, r.cull, r.instanceCount);
+    }
     if (timer)
         markTimestamp(*timer, cmd, "cull");
 

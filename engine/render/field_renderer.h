@@ -84,6 +84,9 @@ struct FrameState {
     double hours = 12.0;  // local solar time: the sky
     WindState wind;
     uint32_t debugView = gpu::kDebugViewNone;
+    // Keep the last culled frame's visible lists and LODs (to look at what culling chose from
+    // elsewhere); ignored until one frame has been culled.
+    bool freezeCulling = false;
 };
 
 struct FieldRenderer {
@@ -139,6 +142,8 @@ struct FieldRenderer {
     gpu::uvec4 litSky{0u};   // the sky frames it was projected for
     float litWeight = -1.0f; // and their weight
     bool lightThisFrame = false;
+    bool cullThisFrame = true;
+    bool culledOnce = false;
     uint64_t uploadBytesLastFrame = 0; // bytes the CPU wrote for the last frame (uniforms, push constants)
     gpu::GpuFrame lastFrame{};
 };
