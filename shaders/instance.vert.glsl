@@ -39,7 +39,12 @@ void main() {
     uint entry = visible[gl_InstanceIndex];
     uint index = entry & ~kLodFadeEntryBit;
     GpuInstance inst = instances[index];
-    GpuClump clump = clumps[inst.mesh];
+    // Only the fields used: lavapipe (Mesa 22.3) at 128-bit vectors corrupted its heap copying the
+    // whole GpuClump into the vertex shader's locals.
+    uvec4 clumpMotion = clumps[inst.mesh].motion;
+    uvec4 clumpLight = clumps[inst.mesh].light;
+    vec4 clumpYaw = clumps[inst.mesh].yawBins;
+    uint blendFrames = clumps[inst.mesh].graphSizes.z;
     float x = lodX[index];
     outFade = frame.counts.w > 1u ? x - floor(x) : 0.0;
     outIsFadeLod = (entry & kLodFadeEntryBit) != 0u ? 1u : 0u;
@@ -51,9 +56,9 @@ void main() {
 
     // x̄ + U q, q blended across a graph jump (motion_step.h): the old path's weight fades from 1.
     GpuMotionState state = states[index];
-    float blend = state.blendFramesLeft > 0u ? float(state.blendFramesLeft) / float(clump.graphSizes.z) : 0.0;
-    uint q0 = clump.motion.y + state.frame * clump.motion.z + v.motion.y;
-    uint q1 = clump.motion.y + state.blendFrom * clump.motion.z + v.motion.y;
+    float blend = state.blendFramesLeft > 0u ? float(state.blendFramesLeft) / float(blendFrames) : 0.0;
+    uint q0 = clumpMotion.y + state.frame * clumpMotion.z + v.motion.y;
+    uint q1 = clumpMotion.y + state.blendFrom * clumpMotion.z + v.motion.y;
     vec3 d = vec3(0.0);
     for (uint k = 0u; k < rank; ++k) {
         uint row = v.motion.x + 3u * k;
@@ -64,10 +69,10 @@ void main() {
     // Irradiance of both sides to first order in d, for this instance's light variant (its yaw
     // bin, mirrored or not: light.comp).
     bool mirrored = inst.positionScale.w < 0.0;
-    uint bins = clump.light.y;
-    int bin = clamp(int(floor((inst.yaw - clump.yawBins.x) * clump.yawBins.y)), 0, int(bins) - 1);
+    uint bins = clumpLight.y;
+    int bin = clamp(int(floor((inst.yaw - clumpYaw.x) * clumpYaw.y)), 0, int(bins) - 1);
     uint variant = uint(bin) + (mirrored ? bins : 0u);
-    uint base = clump.light.x + (v.motion.z * 2u * bins + variant) * kLightVec4sPerVertex;
+    uint base = clumpLight.x + (v.motion.z * 2u * bins + variant) * kLightVec4sPerVertex;
     vec4 l0 = vertexLight[base], l1 = vertexLight[base + 1u], l2 = vertexLight[base + 2u];
     vec4 l3 = vertexLight[base + 3u], l4 = vertexLight[base + 4u], l5 = vertexLight[base + 5u];
     outFront = max(vec3(l0.x + dot(l0.yzw, d), l1.x + dot(l1.yzw, d), l2.x + dot(l2.yzw, d)), 0.0) / kPi;
@@ -86,5 +91,5 @@ void main() {
     outWorld = world;
     outNormal = yaw * n;
     outUv = vec2(v.positionU.w, v.normalV.w);
-    outAlbedo = clump.albedo;
+    outAlbedo = clumps[inst.mesh].albedo;
 }

@@ -2,7 +2,9 @@
 // Light pass (DESIGN.md 3): runs when the sky changes. One thread per clump vertex and light
 // variant: the blended sky's SH, turned into the clump's frame for the variant's yaw and mirror
 // (sh_light.h), dotted with the vertex's transfer and its gradient. What it writes is all the
-// vertex shader needs: irradiance = E + dE/dd . d for its displacement d.
+// vertex shader needs: irradiance = E + dE/dd . d for its displacement d. Threads past the
+// vertices do the clump's ground grid: per point the ratio of its irradiance to that of open
+// ground, which ground_map.frag multiplies into the field's ground light map.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "sh_light.h"
@@ -20,9 +22,13 @@ void main() {
     GpuClump clump = clumps[clumpIndex];
     uint variants = 2u * clump.light.y;
     uint thread = gl_GlobalInvocationID.x;
-    uint vertex = thread / variants, variant = thread % variants;
-    if (vertex >= clump.light.w)
+    uint points = clump.ground.z * clump.ground.z;
+    uint vertexThreads = clump.light.w * variants;
+    if (thread >= vertexThreads + points * variants)
         return;
+    bool ground = thread >= vertexThreads;
+    uint item = ground ? thread - vertexThreads : thread;
+    uint vertex = item / variants, variant = item % variants;
 
     // The sky: two frames of the day, blended.
     uint stride = kSkyFrameHeaderFloats + frame.skyFrames.z * frame.skyFrames.w * 3u;
@@ -39,6 +45,21 @@ void main() {
     float local[27];
     shSkyToClumpFrame(sky, shClumpFrameSign(mirrored), shClumpFrameDelta(yaw, mirrored, frame.skyBlend.y), local);
 
+    if (ground) {
+        // Open ground: the clamped cosine about +y, which no turn about +y or mirror changes.
+        vec3 open = kPi * 0.282095 * vec3(local[0], local[1], local[2]) +
+                    2.0 * kPi / 3.0 * 0.488603 * vec3(local[6], local[7], local[8]) +
+                    kPi / 4.0 * 0.630784 * vec3(local[18], local[19], local[20]);
+        vec3 shaded = vec3(0.0);
+        for (uint i = 0u; i < 9u; ++i) {
+            uint at = clump.ground.x + vertex * 27u + i; // [point][channel][coefficient]
+            shaded += vec3(transfer[at].x, transfer[at + 9u].x, transfer[at + 18u].x) *
+                      vec3(local[3u * i], local[3u * i + 1u], local[3u * i + 2u]);
+        }
+        vec3 ratio = clamp(shaded / max(open, vec3(1e-9)), vec3(0.0), vec3(2.0));
+        vertexLight[clump.ground.y + variant * points + vertex] = vec4(ratio, 1.0);
+        return;
+    }
     uint t = clump.light.z + vertex * 54u;
     uint out0 = clump.light.x + (vertex * variants + variant) * kLightVec4sPerVertex;
     for (uint sc = 0u; sc < 6u; ++sc) { // side-major, then channel (transfer.h)

@@ -5,7 +5,7 @@
 #include "app/args.h"
 #include "library.h"
 #include "render/camera.h"
-#include "render/field_renderer.h"
+#include "render/field_content.h"
 #include "scene.h"
 #include "vk/context.h"
 
@@ -21,17 +21,6 @@ ContextOptions contextOptionsFromArgs(const ParsedArgs& args);
 
 // The scene's camera, overridden by --camera EX,EY,EZ,TX,TY,TZ.
 Camera cameraFromArgs(const ParsedArgs& args, const Scene& scene);
-
-// The library's terrain, wind direction, LOD choice and sky, as the field renderer draws them. The
-// switch radii put each LOD's error (RMS distance over simulated frames) at about 0.3 pixels.
-FieldScenery fieldScenery(const Library& library);
-
-// The library's clumps (mean pose, LODs, motion, light transfer), then its rocks (static, five
-// copies of the whole mesh as their LODs), as the field renderer draws them.
-std::vector<FieldClump> fieldClumps(const Library& library);
-
-// The field's clump instances, then its rocks (their `mesh` after the clumps, as fieldClumps).
-std::vector<gpu::GpuInstance> fieldInstances(const Library& library);
 
 // Prints the validation summary when validation ran; returns the exit status to use: 0, or 3
 // when the layer reported anything.

@@ -22,6 +22,7 @@ constexpr uint32_t kSidesTimesChannels = 6; // transfer.h: 2 sides x RGB
 constexpr uint32_t kShCount = 9;            // order 3
 constexpr uint32_t kTransferValues = kSidesTimesChannels * kShCount;
 constexpr double kMotionRate = 30.0; // motion frames per second (the simulation's frame rate)
+constexpr VkFormat kGroundLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 // Unshadowed transfer of a plain two-sided surface: each side the clamped cosine about its normal
 // (the front's n, the back's -n) in SH, the same for the three channels, no gradient.
@@ -90,6 +91,12 @@ void checkClump(const FieldClump& clump, size_t index, uint32_t lodCount) {
     if (!clump.transfer.empty() && clump.transfer.size() != vertexCount * kTransferValues * 4)
         throw Error(what + ": its light transfer holds " + std::to_string(clump.transfer.size()) +
                     " values, not 216 per vertex (SH order 3, two sides, RGB, with gradients)");
+    if (clump.groundResolution == 1 ||
+        clump.groundTransfer.size() != size_t(clump.groundResolution) * clump.groundResolution * 27 ||
+        (clump.groundResolution > 0 && !(clump.groundSize > 0.0f)))
+        throw Error(what + ": its ground grid of " + std::to_string(clump.groundResolution) +
+                    " points per side holds " + std::to_string(clump.groundTransfer.size()) +
+                    " values (27 per point) over " + std::to_string(clump.groundSize) + " m");
     if (clump.yawBins == 0 || !(clump.yawHigh >= clump.yawLow))
         throw Error(what + ": its yaw range or yaw bins are empty");
 }
@@ -151,6 +158,12 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
     GraphicsPipelineDesc instanceDesc{"instance.vert", "instance.frag", kHdrFormat, kDepthFormat};
     instanceDesc.pushConstantSize = sizeof(glm::vec4);
     r.instance = createGraphicsPipeline(ctx, instanceDesc);
+    GraphicsPipelineDesc groundMapDesc{"ground_map.vert", "ground_map.frag", kGroundLightFormat, VK_FORMAT_UNDEFINED};
+    groundMapDesc.depthTest = false;
+    groundMapDesc.depthWrite = false;
+    groundMapDesc.pushConstantSize = sizeof(glm::vec4);
+    groundMapDesc.multiplyBlend = true;
+    r.groundMap = createGraphicsPipeline(ctx, groundMapDesc);
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);
     r.windAzimuth = std::atan2(wind.x, wind.y); // light/sh.h: from +z towards +x
@@ -241,6 +254,15 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
                         ? glm::vec4(clump.yawLow, float(clump.yawBins) / range, range / float(clump.yawBins), 0.0f)
                         : glm::vec4(clump.yawLow, 0.0f, 0.0f, 0.0f);
         g.albedo = clump.albedo;
+        if (clump.groundResolution >= 2) {
+            const uint32_t points = clump.groundResolution * clump.groundResolution;
+            g.ground = gpu::uvec4(uint32_t(transfer.size() / 4), uint32_t(lightVec4s), clump.groundResolution, 0u);
+            for (float t : clump.groundTransfer)
+                transfer.insert(transfer.end(), {t, 0.0f, 0.0f, 0.0f});
+            lightVec4s += uint64_t(points) * variants;
+            r.lightVertices.back() += points * variants;
+            g.yawBins.w = clump.groundSize;
+        }
         gpuClumps.push_back(g);
     }
     if (lightVec4s > (uint64_t(1) << 31) / 16 || motionData.size() > (size_t(1) << 31))
@@ -261,6 +283,27 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
         if (clump.motion.frames > 0)
             states[i] = initialMotionState(clump.graph, uint32_t(i));
     }
+    // The ground light map covers every instance's ground grid, at about 8 cm a texel.
+    glm::vec2 low(1e30f), high(-1e30f);
+    for (const gpu::GpuInstance& inst : instances) {
+        const float reach = 0.75f * clumps[inst.mesh].groundSize * std::abs(inst.positionScale.w); // > half diagonal
+        if (clumps[inst.mesh].groundResolution < 2)
+            continue;
+        low = glm::min(low, glm::vec2(inst.positionScale.x, inst.positionScale.z) - reach);
+        high = glm::max(high, glm::vec2(inst.positionScale.x, inst.positionScale.z) + reach);
+    }
+    VkExtent2D mapSize{1, 1};
+    if (low.x < high.x) {
+        const glm::vec2 extent = high - low;
+        mapSize = {std::clamp(uint32_t(extent.x / 0.08f), 16u, 2048u),
+                   std::clamp(uint32_t(extent.y / 0.08f), 16u, 2048u)};
+        r.groundRect = glm::vec4(low, 1.0f / extent.x, 1.0f / extent.y);
+    } else {
+        r.groundRect = glm::vec4(0.0f, 0.0f, 0.0f, 0.0f); // nothing casts: every point reads the open-ground texel
+    }
+    r.groundLight = createImage2D(ctx, mapSize, kGroundLightFormat,
+                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+
     uint32_t first = 0;
     for (uint32_t m = 0; m < r.meshCount; ++m) {
         draws[m].firstInstance = first;
@@ -334,7 +377,7 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
 }
 
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
-    for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance})
+    for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance, &r.groundMap})
         destroyPipeline(ctx, *p);
     for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,        &r.clumps,
                       &r.plantVertices, &r.lodVertices, &r.indices,       &r.motionData,      &r.motionGraph,
@@ -342,6 +385,7 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
                       &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices, &r.terrainIndices})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
+    destroyImage(ctx, r.groundLight);
     if (r.sampler)
         vkDestroySampler(ctx.device, r.sampler, nullptr);
     r = FieldRenderer{};
@@ -381,6 +425,7 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
     const float t = float(blend.weight);
     f.skyFrames = gpu::uvec4(blend.first, blend.second, r.skyDay.imageWidth, r.skyDay.imageHeight);
     f.skyBlend = glm::vec4(t, r.windAzimuth, 0.0f, 0.0f);
+    f.groundMap = r.groundRect;
     const glm::vec3 sun = glm::mix(a.sunDirection, b.sunDirection, t);
     f.sunDirection = glm::vec4(glm::length(sun) > 1e-6f ? glm::normalize(sun) : glm::vec3(0, 1, 0), 0.0f);
     f.sunColor = glm::vec4(glm::mix(a.sunRadiance, b.sunRadiance, t), float(sky::kSunAngularRadius));
@@ -419,8 +464,8 @@ void updateFrame(FieldRenderer& r, const FrameState& state) {
     r.lastFrame = f;
     // What crosses to the GPU for this frame: the uniform block and the push constants recorded
     // into its commands (the instance pipeline's mirror plane, the light pass's clump index).
-    r.uploadBytesLastFrame =
-        sizeof(f) + sizeof(r.mirrorNormal) + (r.lightThisFrame ? r.clumpCount * sizeof(uint32_t) : 0u);
+    r.uploadBytesLastFrame = sizeof(f) + sizeof(r.mirrorNormal) +
+                             (r.lightThisFrame ? r.clumpCount * sizeof(uint32_t) + sizeof(r.mirrorNormal) : 0u);
 }
 
 void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
@@ -449,7 +494,9 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
 
     // Reset the draws' instance counts (from the template) and the statistics. The previous frame
     // read them as indirect commands, in the vertex shader and as copy sources.
-    barrier(cmd, access::kIndirectRead | access::kVertexShaderRead | access::kComputeReadWrite | access::kTransferRead,
+    barrier(cmd,
+            access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead |
+                access::kComputeReadWrite | access::kTransferRead,
             access::kTransferWrite | access::kComputeReadWrite);
     if (r.cullThisFrame) {
         VkBufferCopy drawsRegion{0, 0, r.drawCommands.size};
@@ -481,10 +528,44 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
             dispatchCovering(cmd, r.light, r.lightVertices[c]);
         }
     }
+    barrier(cmd, access::kComputeReadWrite,
+            access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead);
+    if (r.lightThisFrame) {
+        // The ground light map: cleared to open ground, then every instance's grid multiplied in.
+        imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kFragmentShaderRead,
+                     VK_IMAGE_LAYOUT_UNDEFINED, access::kColorAttachmentWrite,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+        VkRenderingAttachmentInfo map{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        map.imageView = r.groundLight.view;
+        map.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        map.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        map.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        map.clearValue.color = {{1.0f, 1.0f, 1.0f, 1.0f}};
+        VkRenderingInfo mapPass{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        mapPass.renderArea = {{0, 0}, r.groundLight.extent};
+        mapPass.layerCount = 1;
+        mapPass.colorAttachmentCount = 1;
+        mapPass.pColorAttachments = &map;
+        vkCmdBeginRendering(cmd, &mapPass);
+        VkViewport mapViewport{0.0f, 0.0f, float(r.groundLight.extent.width), float(r.groundLight.extent.height),
+                               0.0f, 1.0f};
+        VkRect2D mapScissor{{0, 0}, r.groundLight.extent};
+        vkCmdSetViewport(cmd, 0, 1, &mapViewport);
+        vkCmdSetScissor(cmd, 0, 1, &mapScissor);
+        if (r.groundRect.z > 0.0f) {
+            bindPipeline(ctx, cmd, r.groundMap, {r.frameUniforms, r.instances, r.clumps, r.vertexLight});
+            vkCmdPushConstants(cmd, r.groundMap.layout, r.groundMap.pushConstantStages, 0, sizeof(glm::vec4),
+                               &r.mirrorNormal);
+            vkCmdDraw(cmd, 6, r.instanceCount, 0, 0);
+        }
+        vkCmdEndRendering(cmd);
+        imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kFragmentShaderRead,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
     if (timer)
         markTimestamp(*timer, cmd, "light");
 
-    barrier(cmd, access::kComputeReadWrite, access::kIndirectRead | access::kVertexShaderRead);
     // The previous frame's tonemap read the HDR image and wrote the LDR image; the contents are
     // not needed again, so both start from UNDEFINED.
     imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeRead | access::kTransferRead,
@@ -519,7 +600,9 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     bindPipeline(ctx, cmd, r.sky, {r.frameUniforms, r.skyData});
     vkCmdDraw(cmd, 3, 1, 0, 0);
 
-    bindPipeline(ctx, cmd, r.ground, {r.frameUniforms, r.terrainVertices, r.skyData});
+    bindPipeline(ctx, cmd, r.ground,
+                 {r.frameUniforms, r.terrainVertices, r.skyData,
+                  Binding(r.groundLight.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
     vkCmdBindIndexBuffer(cmd, r.terrainIndices.buffer, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cmd, r.terrainIndexCount, 1, 0, 0, 0);
 

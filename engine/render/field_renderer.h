@@ -48,6 +48,12 @@ struct FieldClump {
     float yawLow = 0.0f, yawHigh = 0.0f;
     uint32_t yawBins = 1;
     glm::vec4 albedo{0.0f}; // w 1: this rgb instead of the atlas (rocks)
+    // The ground around the clump (transfer.h GroundTransfer): groundResolution^2 points over a
+    // square of groundSize metres centred on the clump's base, row-major with rows along z, each
+    // 3 channels x 9 SH coefficients. Empty (resolution 0): the clump casts no ground shadow.
+    std::vector<float> groundTransfer;
+    uint32_t groundResolution = 0;
+    float groundSize = 0.0f;
 };
 
 // A static clump of one mesh: every LOD the whole mesh, no motion, unshadowed light.
@@ -97,6 +103,7 @@ struct FieldRenderer {
     Pipeline sky;
     Pipeline ground;
     Pipeline instance;
+    Pipeline groundMap;
 
     Buffer frameUniforms; // host-written each frame: the only per-frame upload
     Buffer instances;
@@ -119,6 +126,11 @@ struct FieldRenderer {
 
     Image atlas;
     VkSampler sampler = VK_NULL_HANDLE;
+
+    // The field's ground light map (ground_map.vert): the share of open-ground light reaching each
+    // point of the ground, multiplied over every instance's grid; redrawn with the light pass.
+    Image groundLight;
+    glm::vec4 groundRect{0.0f, 0.0f, 1.0f, 1.0f}; // GpuFrame::groundMap
 
     Buffer terrainVertices;
     Buffer terrainIndices;

@@ -28,9 +28,10 @@ static_assert(offsetof(GpuFrame, windGust) == 400);
 static_assert(offsetof(GpuFrame, motion) == 416);
 static_assert(offsetof(GpuFrame, skyFrames) == 432);
 static_assert(offsetof(GpuFrame, skyBlend) == 448);
-static_assert(sizeof(GpuFrame) == 464);
+static_assert(offsetof(GpuFrame, groundMap) == 464);
+static_assert(sizeof(GpuFrame) == 480);
 
-static_assert(sizeof(GpuClump) == 96 && offsetof(GpuClump, albedo) == 80);
+static_assert(sizeof(GpuClump) == 112 && offsetof(GpuClump, ground) == 80 && offsetof(GpuClump, albedo) == 96);
 static_assert(sizeof(GpuPlantVertex) == 48 && offsetof(GpuPlantVertex, motion) == 32);
 static_assert(sizeof(GpuLodVertex) == 8);
 

@@ -61,6 +61,7 @@ struct GpuFrame {
     // The sky: two frames of the library's day (SKYD) blended; light.comp projects onto it.
     uvec4 skyFrames; // x first frame, y second frame, zw unused
     vec4 skyBlend;   // x weight of the second frame, y azimuth of the simulation wind (mirror plane), zw unused
+    vec4 groundMap;  // the ground light map's rectangle: x, y its lowest world x and z, z, w 1 / its size in x, z
 };
 
 // One plant instance (storage buffer, read by cull and the vertex shader).
@@ -82,7 +83,11 @@ struct GpuClump {
     uvec4 graphSizes; // x edges, y wind levels, z blend frames, w unused
     uvec4 light;      // x first vec4 in vertexLight, y light variants per mirror state (yaw bins),
                       // z first value in transfer, w vertices
-    vec4 yawBins;     // x lowest yaw, y bins per radian (0: one bin), z bin width (radians), w unused
+    vec4 yawBins;     // x lowest yaw, y bins per radian (0: one bin), z bin width (radians), w ground grid
+                      // side (m)
+    uvec4 ground;     // the ground grid around the clump: x first vec4 of its transfer in transfer (27 per
+                      // point), y first vec4 of its light (per variant, per point), z points per side (0:
+                      // none), w unused
     vec4 albedo;      // rgb constant albedo, w 1: use it instead of the atlas
 };
 

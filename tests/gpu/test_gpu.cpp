@@ -538,6 +538,20 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
     plain.yawLow = -0.3f;
     plain.yawHigh = 0.5f;
     plain.yawBins = 3;
+    // A ground grid of open ground (the clamped cosine about +y) with one shaded point, a quarter
+    // of the light, in the middle.
+    plain.groundResolution = 3;
+    plain.groundSize = 1.0f;
+    {
+        double up[9];
+        sh::evaluate(3, glm::dvec3(0.0, 1.0, 0.0), up);
+        const double lobe[9] = {M_PI,     2 * M_PI / 3, 2 * M_PI / 3, 2 * M_PI / 3, M_PI / 4,
+                                M_PI / 4, M_PI / 4,     M_PI / 4,     M_PI / 4};
+        for (uint32_t point = 0; point < 9; ++point)
+            for (uint32_t c = 0; c < 3; ++c)
+                for (uint32_t i = 0; i < 9; ++i)
+                    plain.groundTransfer.push_back(float(lobe[i] * up[i] * (point == 4 ? 0.25 : 1.0)));
+    }
     FieldClump graded = plain;
     uint64_t seed = 5;
     for (size_t i = 0; i < graded.mesh.vertices.size() * 216; ++i) {
@@ -592,9 +606,17 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
         }
     EXPECT_GT(scale, 0.01);
     EXPECT_LT(worst, 1e-4 * scale) << "irradiance of the unshadowed clump";
+    // Its ground: open ground passes all the light, the shaded point a quarter, in every variant.
+    const size_t groundBase = size_t(vertices) * variants * gpu::kLightVec4sPerVertex;
+    for (uint32_t variant = 0; variant < variants; ++variant)
+        for (uint32_t point = 0; point < 9; ++point) {
+            const glm::vec4 ratio = light[groundBase + variant * 9 + point];
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(ratio[c], point == 4 ? 0.25f : 1.0f, 1e-4f) << "variant " << variant << " point " << point;
+        }
 
     // The graded clump: T̄ and the gradient, per side and channel, against sh_light.h on the CPU.
-    const size_t base = size_t(vertices) * variants * gpu::kLightVec4sPerVertex;
+    const size_t base = groundBase + variants * 9;
     worst = 0.0;
     scale = 0.0;
     for (uint32_t v = 0; v < vertices; ++v)

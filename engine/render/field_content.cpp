@@ -1,0 +1,154 @@
+#include "render/field_content.h"
+
+#include "core/error.h"
+
+#include <algorithm>
+#include <meshoptimizer.h>
+
+namespace meadow {
+namespace {
+
+// A rock's levels of detail: meshoptimizer's edge-collapse simplifier at the plants' triangle
+// fractions (scene lod.triangleFractions' defaults), the rim on the ground locked so it stays
+// closed against the terrain, stopping at 5 % of the rock's size so a far rock keeps its bulk;
+// each LOD ordered for the vertex cache.
+std::vector<FieldLod> rockLods(const Mesh& mesh) {
+    const float fractions[kLodCount] = {1.0f, 1.0f / 3.0f, 1.0f / 10.0f, 1.0f / 20.0f, 1.0f / 30.0f};
+    std::vector<float> positions;
+    for (const gpu::GpuVertex& v : mesh.vertices)
+        positions.insert(positions.end(), {v.positionU.x, v.positionU.y, v.positionU.z});
+    std::vector<FieldLod> lods;
+    std::vector<uint32_t> previous = mesh.indices;
+    for (uint32_t l = 0; l < kLodCount; ++l) {
+        std::vector<uint32_t> indices = previous;
+        if (l > 0) {
+            const size_t target = std::max<size_t>(3, size_t(float(mesh.indices.size() / 3) * fractions[l]) * 3);
+            indices.resize(previous.size());
+            indices.resize(meshopt_simplify(indices.data(), previous.data(), previous.size(), positions.data(),
+                                            mesh.vertices.size(), 3 * sizeof(float), target, 0.05f,
+                                            meshopt_SimplifyLockBorder, nullptr));
+            if (indices.empty())
+                indices = previous;
+        }
+        previous = indices;
+        meshopt_optimizeVertexCache(indices.data(), indices.data(), indices.size(), mesh.vertices.size());
+        // The LOD's own vertices in first-use order, and its triangles over them.
+        FieldLod lod;
+        std::vector<uint32_t> local(mesh.vertices.size(), UINT32_MAX);
+        for (uint32_t i : indices) {
+            if (local[i] == UINT32_MAX) {
+                local[i] = uint32_t(lod.vertices.size());
+                lod.vertices.push_back(i);
+            }
+            lod.indices.push_back(local[i]);
+        }
+        lods.push_back(std::move(lod));
+    }
+    return lods;
+}
+
+} // namespace
+
+FieldScenery fieldScenery(const Library& library) {
+    const PlacementStats& stats = library.placement.stats;
+    const glm::vec2 half = 0.5f * stats.tileSize * glm::vec2(float(stats.tilesX), float(stats.tilesY));
+    // 1 m spacing follows hills of tens of metres within millimetres; 20 m of margin ease them
+    // into the plain.
+    FieldScenery scenery{makeTerrainMesh(library.placement.terrain, half, 20.0f, 1.0f),
+                         library.placement.windDirection};
+    scenery.sky = library.sky;
+    scenery.lodCount = kLodCount;
+    gpu::GpuLodParams& p = scenery.lod;
+    p.band = 0.1f;
+    p.jitter = 0.2f;
+    p.hysteresis = 0.05f;
+    // A sphere of radius R covering r pixels shows an error e at r e / R pixels: LOD i + 1 may
+    // take over below r = tolerance R / e_(i+1), for the clump whose error is largest for its size.
+    // 0.3 px of RMS error: at 1 px the far LODs' thinner silhouettes (their Hausdorff distance is
+    // 5-10x the RMS) showed as a sparser field from ~10 m on (docs/BENCHMARKS.md).
+    const float tolerancePixels = 0.3f;
+    std::vector<float> radius(library.clumps.size(), 0.0f);
+    for (const gpu::GpuInstance& inst : library.field)
+        radius[inst.mesh] = std::max(radius[inst.mesh], inst.boundingRadius);
+    for (uint32_t i = 0; i + 1 < kLodCount; ++i) {
+        float r = 1e6f;
+        for (size_t c = 0; c < library.clumps.size(); ++c) {
+            const double e = library.clumps[c].lods[i + 1].error.deformed.rms;
+            if (e > 0.0 && radius[c] > 0.0f)
+                r = std::min(r, float(tolerancePixels * radius[c] / e));
+        }
+        // Bands must not overlap: each switch lies below the previous one's band.
+        if (i > 0)
+            r = std::min(r, p.switchRadius[i - 1] * (1.0f - p.band) / (1.0f + p.band) * 0.98f);
+        p.switchRadius[i] = r;
+    }
+    return scenery;
+}
+
+std::vector<FieldClump> fieldClumps(const Library& library) {
+    std::vector<FieldClump> clumps;
+    // Clumps turn by at most the field's yaw jitter; light is projected for 4 yaws in that range.
+    float jitter = 0.3f;
+    if (library.scene.contains("field") && library.scene["field"].contains("yawJitter"))
+        jitter = library.scene["field"]["yawJitter"].get<float>();
+    for (const LibraryClump& source : library.clumps) {
+        FieldClump clump;
+        clump.mesh = source.mesh;
+        for (const ClumpLod& lod : source.lods)
+            clump.lods.push_back({lod.vertices, lod.indices});
+        clump.motion = source.motion;
+        clump.graph = source.graph;
+        if (source.light.order != 3 || source.light.vertices.valuesPerVertex != 54)
+            throw Error("library clump " + source.name + ": its light transfer has SH order " +
+                        std::to_string(source.light.order) + "; the renderer draws order 3");
+        clump.transfer = source.light.vertices.coefficients;
+        clump.yawLow = -jitter;
+        clump.yawHigh = jitter;
+        clump.yawBins = jitter > 0.0f ? 4 : 1;
+        // The ground grid's mean transfer over the motion (its appearance modes, if any, are small:
+        // the grid varies less than its bake noise, DESIGN 2.5).
+        if (source.light.groundResolution >= 2) {
+            const Eigen::VectorXf& mean = source.light.ground.mean;
+            clump.groundTransfer.assign(mean.data(), mean.data() + mean.size());
+            clump.groundResolution = source.light.groundResolution;
+            clump.groundSize = source.light.groundSize;
+        }
+        clumps.push_back(std::move(clump));
+    }
+    // Rocks: static, lit by their baked transfer (no gradient), turned to any yaw (8 light bins),
+    // simplified at load (milliseconds) into five LODs.
+    for (const LibraryRock& rock : library.placement.rocks) {
+        Mesh mesh;
+        for (size_t v = 0; v < rock.mesh.positions.size(); ++v)
+            mesh.vertices.push_back({glm::vec4(rock.mesh.positions[v], rock.mesh.uvs[v].x),
+                                     glm::vec4(rock.mesh.normals[v], rock.mesh.uvs[v].y)});
+        mesh.indices = rock.mesh.indices;
+        FieldClump clump = staticFieldClump(mesh, kLodCount);
+        clump.lods = rockLods(mesh);
+        if (rock.order != 3 || rock.transfer.size() != rock.mesh.positions.size() * 54)
+            throw Error("library rock " + rock.mesh.name + ": its light transfer is not SH order 3 per vertex");
+        clump.transfer.reserve(rock.transfer.size() * 4);
+        for (float t : rock.transfer)
+            clump.transfer.insert(clump.transfer.end(), {t, 0.0f, 0.0f, 0.0f});
+        clump.albedo = glm::vec4(0.30f, 0.28f, 0.25f, 1.0f); // as baked (library.cpp)
+        if (rock.groundResolution >= 2) {
+            clump.groundTransfer = rock.groundTransfer;
+            clump.groundResolution = rock.groundResolution;
+            clump.groundSize = rock.groundSize;
+        }
+        clumps.push_back(std::move(clump));
+    }
+    return clumps;
+}
+
+std::vector<gpu::GpuInstance> fieldInstances(const Library& library) {
+    std::vector<gpu::GpuInstance> instances = library.field;
+    const uint32_t firstRock = uint32_t(library.clumps.size());
+    for (gpu::GpuInstance rock : library.placement.rockInstances) {
+        rock.mesh += firstRock;
+        instances.push_back(rock);
+    }
+    return instances;
+}
+
+} // namespace meadow

@@ -1,0 +1,23 @@
+// A library turned into what the field renderer draws: its clumps and rocks (FieldClump), their
+// instances, and the scenery (terrain, wind direction, LOD choice, sky).
+#pragma once
+
+#include "library.h"
+#include "render/field_renderer.h"
+
+#include <vector>
+
+namespace meadow {
+
+// The library's terrain, wind direction, LOD choice and sky, as the field renderer draws them. The
+// switch radii put each LOD's error (RMS distance over simulated frames) at about 0.3 pixels.
+FieldScenery fieldScenery(const Library& library);
+
+// The library's clumps (mean pose, LODs, motion, light transfer), then its rocks (static, their
+// LODs simplified at load), as the field renderer draws them. Deterministic.
+std::vector<FieldClump> fieldClumps(const Library& library);
+
+// The field's clump instances, then its rocks (their `mesh` after the clumps, as fieldClumps).
+std::vector<gpu::GpuInstance> fieldInstances(const Library& library);
+
+} // namespace meadow
