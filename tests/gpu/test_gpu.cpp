@@ -647,6 +647,40 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
     destroyFieldRenderer(*context, renderer);
 }
 
+// The per-frame CPU contract (DESIGN.md 3 and 5): what the CPU writes for a frame (the uniform
+// block and the push constants it records) does not grow with the field and stays within 1 KiB,
+// with the sky moving (the light pass runs) or not.
+TEST_F(Gpu, UploadPerFrameIsSmallAndIndependentOfFieldSize) {
+    std::vector<FieldClump> clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount)};
+    FieldScenery scenery = testScenery();
+    scenery.lodCount = kLodCount;
+    scenery.lod = {{120.0f, 50.0f, 20.0f, 8.0f}, 0.1f, 0.2f, 0.05f, 0.0f};
+    std::vector<uint64_t> bytes[2];
+    const uint32_t counts[2] = {50, 40000};
+    for (int f = 0; f < 2; ++f) {
+        std::vector<gpu::GpuInstance> instances = scatter(counts[f], 23);
+        for (gpu::GpuInstance& inst : instances)
+            inst.mesh %= 2;
+        FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
+        Offscreen offscreen = createOffscreen(*context, {32, 24});
+        FrameState state = frameState(Camera{}, 32, 24);
+        for (int frame = 0; frame < 4; ++frame) {
+            state.seconds = frame / 30.0;
+            state.hours = frame < 2 ? 10.0 : 10.0 + frame * 0.1; // still, then moving
+            renderOffscreenFrame(*context, renderer, offscreen, state);
+            bytes[f].push_back(renderer.uploadBytesLastFrame);
+        }
+        destroyOffscreen(*context, offscreen);
+        destroyFieldRenderer(*context, renderer);
+    }
+    EXPECT_EQ(bytes[0], bytes[1]);
+    for (uint64_t b : bytes[1]) {
+        EXPECT_GE(b, sizeof(gpu::GpuFrame));
+        EXPECT_LE(b, 1024u);
+    }
+    EXPECT_LT(bytes[1][1], bytes[1][0]); // no light pass while the sky holds still
+}
+
 // The validation plumbing itself: a real hazard must be reported, or the validation tests
 // could never fail. Uses its own context so the suite's counter stays clean.
 TEST(GpuValidation, SynchronizationHazardIsReported) {
