@@ -3,6 +3,7 @@
 #include "app/session.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "render/cpu_driver.h"
 #include "render/offscreen.h"
 
 #include <algorithm>
@@ -48,7 +49,9 @@ options:
                         the rocks
   --frames F            measured frames (default 120), after 5 warm-up frames
   --size WxH            image size (default 1280x720)
-  --driver gpu|cpu      gpu: GPU-driven culling (the only path so far)
+  --driver gpu|cpu      gpu (default): the compute passes animate, cull and pick LODs; cpu: the
+                        CPU does (render/cpu_driver.h) and uploads the results every frame, and
+                        the GPU-driven path runs after it for the ratio ("comparison")
   --preset, --seed, --device, --validation, --verbose   as for meadow render
 )";
 
@@ -165,9 +168,7 @@ int runBench(const Args& argv) {
     std::filesystem::path out = *args.value("--json");
     checkOutputWritable(out);
     std::string driver = args.value("--driver").value_or("gpu");
-    if (driver == "cpu")
-        throw Error("meadow bench: --driver cpu: the CPU-driven comparison path does not exist yet; only gpu runs");
-    if (driver != "gpu")
+    if (driver != "gpu" && driver != "cpu")
         throw Error("meadow bench: --driver '" + driver + "' is not gpu or cpu");
     uint32_t frames = args.u32("--frames", 120, 1, 1000000);
     auto [width, height] = args.size("--size", {1280, 720});
@@ -178,13 +179,17 @@ int runBench(const Args& argv) {
     if (args.has("--clumps"))
         field = tileField(library.field, args.u32("--clumps", 0, 1, 50'000'000));
     Camera camera = cameraFromArgs(args, scene);
+    const std::vector<FieldClump> clumps = fieldClumps(library);
+    const FieldScenery scenery = fieldScenery(library);
 
     Context ctx;
     createContext(ctx, contextOptionsFromArgs(args));
-    nlohmann::json j;
-    {
-        FieldRenderer renderer =
-            createFieldRenderer(ctx, fieldClumps(library), field, library.atlas, fieldScenery(library));
+    // One run of `frames` frames (after a warm-up) on either path; its figures as JSON.
+    auto measure = [&](bool cpuDriven) {
+        nlohmann::json j;
+        FieldRenderer renderer = createFieldRenderer(ctx, clumps, field, library.atlas, scenery);
+        if (cpuDriven)
+            enableCpuDriver(ctx, renderer, clumps, field);
         Offscreen offscreen = createOffscreen(ctx, {width, height});
         FrameState state;
         state.camera = camera;
@@ -213,26 +218,18 @@ int runBench(const Args& argv) {
             passMs["total"].push_back(total);
         }
         FieldStats stats = readFieldStats(renderer);
-        j["device"] = ctx.deviceName();
-        j["driver"] = driver;
-        j["vulkanDriver"] = ctx.driverDescription();
-        j["scene"] = scene.name;
-        j["preset"] = scene.preset;
-        j["width"] = width;
-        j["height"] = height;
         j["clumps"] = renderer.instanceCount;
-        j["frames"] = frames;
         j["frameMs"] = {{"median", percentile(frameMs, 0.5)}, {"p95", percentile(frameMs, 0.95)}};
         nlohmann::json gpuMs = nlohmann::json::object();
         for (auto& [label, values] : passMs)
             gpuMs[label] = percentile(values, 0.5);
         j["gpuMs"] = gpuMs;
+        // Recording and submitting, plus (CPU-driven) stepping, culling and filling the uploads.
         j["cpuMsPerFrame"] = percentile(cpuMs, 0.5);
-        // The uniform block and the push constants recorded into each frame (FieldRenderer).
+        // The uniform block and the push constants recorded into each frame (FieldRenderer), plus
+        // (CPU-driven) the motion states, LOD coordinates, draw commands and visible lists.
         j["uploadBytesPerFrame"] = uploadMax;
         j["uploadBytesPerFrameMin"] = uploadMin;
-        j["instanceRecordBytes"] =
-            sizeof(gpu::GpuInstance) + sizeof(gpu::GpuMotionState) + sizeof(float); // + LOD coordinate
         j["trianglesPerFrame"] = stats.trianglesDrawn;
         // Draws per LOD over all clumps (a crossfading instance counts in both of its LODs).
         std::vector<uint32_t> perLod(renderer.lodCount, 0);
@@ -242,6 +239,27 @@ int runBench(const Args& argv) {
         j["visibleInstances"] = stats.visibleInstances;
         destroyOffscreen(ctx, offscreen);
         destroyFieldRenderer(ctx, renderer);
+        return j;
+    };
+    nlohmann::json j = measure(driver == "cpu");
+    j["device"] = ctx.deviceName();
+    j["driver"] = driver;
+    j["vulkanDriver"] = ctx.driverDescription();
+    j["scene"] = scene.name;
+    j["preset"] = scene.preset;
+    j["width"] = width;
+    j["height"] = height;
+    j["frames"] = frames;
+    j["instanceRecordBytes"] =
+        sizeof(gpu::GpuInstance) + sizeof(gpu::GpuMotionState) + sizeof(float); // + LOD coordinate
+    if (driver == "cpu") {
+        // The GPU-driven path in the same run, for the ratio (DESIGN.md 5).
+        nlohmann::json gpu = measure(false);
+        j["comparison"] = {
+            {"gpuDriven", gpu},
+            {"cpuTimeRatio", j["cpuMsPerFrame"].get<double>() / std::max(gpu["cpuMsPerFrame"].get<double>(), 1e-9)},
+            {"uploadRatio", double(j["uploadBytesPerFrame"].get<uint64_t>()) /
+                                double(std::max<uint64_t>(gpu["uploadBytesPerFrame"].get<uint64_t>(), 1))}};
     }
     int status = validationExitStatus(ctx);
     destroyContext(ctx);

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "light/sh.h"
+#include "render/cpu_driver.h"
 #include "sky/sun.h"
 
 #include <algorithm>
@@ -150,8 +151,8 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
     r.light = createComputePipeline(ctx, "light.comp", sizeof(uint32_t));
     r.tonemap = createComputePipeline(ctx, "tonemap.comp");
     GraphicsPipelineDesc skyDesc{"sky.vert", "sky.frag", kHdrFormat, kDepthFormat};
-    skyDesc.depthTest = false;
-    skyDesc.depthWrite = false;
+    skyDesc.depthWrite = false; // at infinite depth (0): drawn where the depth is still the clear value
+    skyDesc.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
     r.sky = createGraphicsPipeline(ctx, skyDesc);
     r.ground =
         createGraphicsPipeline(ctx, GraphicsPipelineDesc{"ground.vert", "ground.frag", kHdrFormat, kDepthFormat});
@@ -386,6 +387,8 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     destroyImage(ctx, r.groundLight);
+    if (r.cpuDriver)
+        destroyCpuDriver(ctx, *r.cpuDriver);
     if (r.sampler)
         vkDestroySampler(ctx.device, r.sampler, nullptr);
     r = FieldRenderer{};
@@ -459,13 +462,17 @@ void updateFrame(FieldRenderer& r, const FrameState& state) {
         r.lightValid = true;
     }
     r.cullThisFrame = !(state.freezeCulling && r.culledOnce);
+    uint64_t cpuDriven = 0;
+    if (r.cpuDriver && r.cullThisFrame)
+        cpuDriven = cpuDriverUpdate(*r.cpuDriver, f);
     r.culledOnce = true;
     std::memcpy(r.frameUniforms.mapped(), &f, sizeof(f));
     r.lastFrame = f;
     // What crosses to the GPU for this frame: the uniform block and the push constants recorded
     // into its commands (the instance pipeline's mirror plane, the light pass's clump index).
     r.uploadBytesLastFrame = sizeof(f) + sizeof(r.mirrorNormal) +
-                             (r.lightThisFrame ? r.clumpCount * sizeof(uint32_t) + sizeof(r.mirrorNormal) : 0u);
+                             (r.lightThisFrame ? r.clumpCount * sizeof(uint32_t) + sizeof(r.mirrorNormal) : 0u) +
+                             cpuDriven;
 }
 
 void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
@@ -498,7 +505,11 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
             access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead |
                 access::kComputeReadWrite | access::kTransferRead,
             access::kTransferWrite | access::kComputeReadWrite);
-    if (r.cullThisFrame) {
+    if (r.cpuDriver) {
+        // The CPU-driven path: what animate and cull would write comes from the host.
+        if (r.cullThisFrame)
+            cpuDriverRecordUploads(*r.cpuDriver, r, cmd);
+    } else if (r.cullThisFrame) {
         VkBufferCopy drawsRegion{0, 0, r.drawCommands.size};
         vkCmdCopyBuffer(cmd, r.drawCommandTemplate.buffer, r.drawCommands.buffer, 1, &drawsRegion);
         vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
@@ -506,13 +517,16 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
 
     // Motion: the states step at the wind of this frame (the previous frame's vertex shader read
     // them: ordered by the barrier above).
-    bindPipeline(ctx, cmd, r.animate, {r.frameUniforms, r.instances, r.clumps, r.motionGraph, r.motionStates});
-    dispatchCovering(cmd, r.animate, r.instanceCount);
+    if (!r.cpuDriver) {
+        bindPipeline(ctx, cmd, r.animate, {r.frameUniforms, r.instances, r.clumps, r.motionGraph, r.motionStates});
+        dispatchCovering(cmd, r.animate, r.instanceCount);
+    }
     if (timer)
         markTimestamp(*timer, cmd, "animate");
 
-    barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
-    if (r.cullThisFrame) {
+    barrier(cmd, access::kTransferWrite,
+            access::kComputeReadWrite | access::kIndirectRead | access::kVertexShaderRead | access::kTransferRead);
+    if (r.cullThisFrame && !r.cpuDriver) {
         bindPipeline(ctx, cmd, r.cull,
                      {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState});
         dispatchCovering(cmd, r.cull, r.instanceCount);
@@ -597,8 +611,18 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 
-    bindPipeline(ctx, cmd, r.sky, {r.frameUniforms, r.skyData});
-    vkCmdDraw(cmd, 3, 1, 0, 0);
+    // Near to far, so that depth testing rejects as much as it can before shading: the clumps LOD
+    // by LOD (LOD 0 is nearest; buckets are clump-major, so LOD l's are every lodCount-th command),
+    // then the terrain, then the sky where nothing else was drawn.
+    bindPipeline(ctx, cmd, r.instance,
+                 {r.frameUniforms, r.instances, r.visibleList, r.lodState, r.clumps, r.plantVertices, r.lodVertices,
+                  r.motionData, r.motionStates, r.vertexLight,
+                  Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
+    vkCmdPushConstants(cmd, r.instance.layout, r.instance.pushConstantStages, 0, sizeof(glm::vec4), &r.mirrorNormal);
+    vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    for (uint32_t lod = 0; lod < r.lodCount; ++lod)
+        vkCmdDrawIndexedIndirect(cmd, r.drawCommands.buffer, lod * sizeof(gpu::GpuDrawIndexedCommand), r.clumpCount,
+                                 r.lodCount * sizeof(gpu::GpuDrawIndexedCommand));
 
     bindPipeline(ctx, cmd, r.ground,
                  {r.frameUniforms, r.terrainVertices, r.skyData,
@@ -606,13 +630,8 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     vkCmdBindIndexBuffer(cmd, r.terrainIndices.buffer, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cmd, r.terrainIndexCount, 1, 0, 0, 0);
 
-    bindPipeline(ctx, cmd, r.instance,
-                 {r.frameUniforms, r.instances, r.visibleList, r.lodState, r.clumps, r.plantVertices, r.lodVertices,
-                  r.motionData, r.motionStates, r.vertexLight,
-                  Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
-    vkCmdPushConstants(cmd, r.instance.layout, r.instance.pushConstantStages, 0, sizeof(glm::vec4), &r.mirrorNormal);
-    vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexedIndirect(cmd, r.drawCommands.buffer, 0, r.meshCount, sizeof(gpu::GpuDrawIndexedCommand));
+    bindPipeline(ctx, cmd, r.sky, {r.frameUniforms, r.skyData});
+    vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
     if (timer)
         markTimestamp(*timer, cmd, "draw");

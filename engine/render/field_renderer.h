@@ -20,12 +20,14 @@
 #include "vk/memory.h"
 #include "vk/pipeline.h"
 
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace meadow {
 
 struct GpuTimer;
+struct CpuDriver;
 
 // One level of detail of a clump: a subset of its vertices and triangles over them.
 struct FieldLod {
@@ -158,6 +160,8 @@ struct FieldRenderer {
     bool culledOnce = false;
     uint64_t uploadBytesLastFrame = 0; // bytes the CPU wrote for the last frame (uniforms, push constants)
     gpu::GpuFrame lastFrame{};
+    // Set by enableCpuDriver (render/cpu_driver.h): the CPU steps, culls and uploads instead.
+    std::shared_ptr<CpuDriver> cpuDriver;
 };
 
 struct FieldStats {

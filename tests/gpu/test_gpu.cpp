@@ -6,6 +6,7 @@
 #include "field_placement.h"
 #include "light/sh.h"
 #include "mesh.h"
+#include "render/cpu_driver.h"
 #include "render/cull_reference.h"
 #include "render/field_renderer.h"
 #include "render/offscreen.h"
@@ -679,6 +680,57 @@ TEST_F(Gpu, UploadPerFrameIsSmallAndIndependentOfFieldSize) {
         EXPECT_LE(b, 1024u);
     }
     EXPECT_LT(bytes[1][1], bytes[1][0]); // no light pass while the sky holds still
+}
+
+// The CPU-driven comparison path steps, culls and uploads on the host what the compute passes
+// produce on the GPU: the same motion states, and the same picture.
+TEST_F(Gpu, CpuDrivenPathDrawsTheSamePicture) {
+    std::vector<FieldClump> clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount)};
+    std::vector<gpu::GpuInstance> instances = scatter(4000, 29);
+    for (gpu::GpuInstance& inst : instances) {
+        inst.mesh %= 2;
+        inst.positionScale = glm::vec4(glm::vec3(inst.positionScale) * 0.1f, inst.positionScale.w > 0 ? 1.0f : -1.0f);
+        inst.positionScale.y = 0.0f;
+        inst.boundingRadius = 1.0f;
+    }
+    FieldScenery scenery = testScenery();
+    scenery.lodCount = kLodCount;
+    scenery.lod = {{60.0f, 25.0f, 10.0f, 4.0f}, 0.1f, 0.2f, 0.05f, 0.0f};
+    Camera camera;
+    camera.eye = glm::vec3(0.0f, 3.0f, -25.0f);
+    camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+    std::vector<uint8_t> pictures[2];
+    std::vector<gpu::GpuMotionState> states[2];
+    uint64_t uploads[2] = {0, 0};
+    for (int path = 0; path < 2; ++path) {
+        FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
+        if (path == 1)
+            enableCpuDriver(*context, renderer, clumps, instances);
+        Offscreen offscreen = createOffscreen(*context, {160, 90});
+        FrameState state = frameState(camera, 160, 90);
+        state.wind.baseLevel = 2.0f;
+        for (int frame = 0; frame < 8; ++frame) {
+            state.seconds = frame * 0.1;
+            state.camera.eye.x = float(frame) * 0.5f;
+            renderOffscreenFrame(*context, renderer, offscreen, state);
+        }
+        pictures[path] = readLdrPixels(*context, offscreen.targets);
+        states[path].resize(instances.size());
+        readbackBuffer(*context, renderer.motionStates, states[path].data(),
+                       states[path].size() * sizeof(gpu::GpuMotionState));
+        uploads[path] = renderer.uploadBytesLastFrame;
+        EXPECT_GT(readFieldStats(renderer).visibleInstances, 100u);
+        destroyOffscreen(*context, offscreen);
+        destroyFieldRenderer(*context, renderer);
+    }
+    ASSERT_EQ(states[0].size(), states[1].size());
+    EXPECT_EQ(std::memcmp(states[0].data(), states[1].data(), states[0].size() * sizeof(gpu::GpuMotionState)), 0);
+    size_t differing = 0;
+    for (size_t i = 0; i < pictures[0].size(); ++i)
+        differing += std::abs(int(pictures[0][i]) - int(pictures[1][i])) > 8;
+    EXPECT_LE(differing, pictures[0].size() / 1000);
+    // The CPU path uploads its motion states every frame: far more than the GPU path's uniforms.
+    EXPECT_GT(uploads[1], uploads[0] + instances.size() * sizeof(gpu::GpuMotionState));
 }
 
 // The validation plumbing itself: a real hazard must be reported, or the validation tests

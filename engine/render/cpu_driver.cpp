@@ -1,0 +1,136 @@
+#include "render/cpu_driver.h"
+
+#include "core/error.h"
+#include "render/cull_reference.h"
+#include "vk/context.h"
+#include "wind_field.h"
+
+#include <cstring>
+#include <tbb/parallel_for.h>
+
+namespace meadow {
+
+struct CpuDriver {
+    std::vector<gpu::GpuInstance> instances;
+    std::vector<MotionGraph> graphs;         // per clump (static clumps: none)
+    std::vector<gpu::MotionTables> tables;   // views of graphs
+    std::vector<gpu::GpuMotionState> states; // what the GPU states would hold
+    std::vector<float> lodX;
+    std::vector<gpu::GpuDrawIndexedCommand> drawTemplate;
+    uint32_t lodCount = 1;
+    // Staging, host-visible: motion states, LOD coordinates, draw commands, statistics and the
+    // visible list, in this order.
+    Buffer staging;
+    size_t statesAt = 0, lodAt = 0, drawsAt = 0, statsAt = 0, visibleAt = 0;
+    uint32_t visibleEntries = 0;             // written this frame
+    std::vector<VkBufferCopy> visibleCopies; // this frame's used part of each bucket's range
+};
+
+void enableCpuDriver(Context& ctx, FieldRenderer& r, std::span<const FieldClump> clumps,
+                     std::span<const gpu::GpuInstance> instances) {
+    if (instances.size() != r.instanceCount || clumps.size() != r.clumpCount)
+        throw Error("the CPU-driven path needs the clumps and instances the renderer was created with");
+    auto d = std::make_unique<CpuDriver>();
+    d->instances.assign(instances.begin(), instances.end());
+    d->lodCount = r.lodCount;
+    d->graphs.resize(clumps.size());
+    d->tables.resize(clumps.size());
+    for (size_t c = 0; c < clumps.size(); ++c)
+        if (clumps[c].motion.frames > 0) {
+            d->graphs[c] = clumps[c].graph;
+            d->tables[c] = makeMotionTables(d->graphs[c]);
+        }
+    d->states.resize(instances.size());
+    readbackBuffer(ctx, r.motionStates, d->states.data(), d->states.size() * sizeof(gpu::GpuMotionState));
+    d->lodX.assign(instances.size(), 0.0f);
+    d->drawTemplate.resize(r.meshCount);
+    readbackBuffer(ctx, r.drawCommandTemplate, d->drawTemplate.data(),
+                   d->drawTemplate.size() * sizeof(gpu::GpuDrawIndexedCommand));
+    d->statesAt = 0;
+    d->lodAt = d->statesAt + d->states.size() * sizeof(gpu::GpuMotionState);
+    d->drawsAt = d->lodAt + d->lodX.size() * sizeof(float);
+    d->statsAt = d->drawsAt + d->drawTemplate.size() * sizeof(gpu::GpuDrawIndexedCommand);
+    d->visibleAt = d->statsAt + sizeof(gpu::GpuCullStats);
+    d->staging =
+        createBuffer(ctx, d->visibleAt + r.visibleList.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+    r.cpuDriver = std::move(d);
+}
+
+uint64_t cpuDriverUpdate(CpuDriver& d, const gpu::GpuFrame& frame) {
+    // Motion: every instance steps at the wind of its place (independent per instance).
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, d.instances.size(), 4096), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i < range.end(); ++i) {
+                const uint32_t c = d.instances[i].mesh;
+                if (d.tables[c].levelCount == 0) { // static: holds its one frame
+                    d.states[i].counter += frame.motion.y;
+                    continue;
+                }
+                for (uint32_t s = 0; s < frame.motion.y; ++s) {
+                    const float level = gpu::windLevelAt(frame, d.instances[i].positionScale.x,
+                                                         d.instances[i].positionScale.z, frame.motion.x + s);
+                    gpu::motionStep(d.tables[c], d.states[i], gpu::windTargetLevel(level, d.tables[c].levelCount),
+                                    uint32_t(i));
+                }
+            }
+        });
+
+    // Cull and LOD, straight into the staging draw commands and visible list.
+    char* base = static_cast<char*>(d.staging.mapped());
+    auto* draws = reinterpret_cast<gpu::GpuDrawIndexedCommand*>(base + d.drawsAt);
+    auto* visible = reinterpret_cast<uint32_t*>(base + d.visibleAt);
+    std::memcpy(draws, d.drawTemplate.data(), d.drawTemplate.size() * sizeof(gpu::GpuDrawIndexedCommand));
+    gpu::GpuCullStats stats{};
+    d.visibleEntries = 0;
+    auto append = [&](uint32_t bucket, uint32_t entry) {
+        visible[draws[bucket].firstInstance + draws[bucket].instanceCount++] = entry;
+        ++d.visibleEntries;
+    };
+    for (uint32_t i = 0; i < d.instances.size(); ++i) {
+        ++stats.testedInstances;
+        if (!instanceVisible(frame, d.instances[i]))
+            continue;
+        ++stats.visibleInstances;
+        const uint32_t first = d.instances[i].mesh * d.lodCount;
+        if (d.lodCount <= 1) {
+            append(first, i);
+            continue;
+        }
+        const gpu::GpuLodChoice choice = lodReference(frame, d.instances[i], i, d.lodX[i]);
+        d.lodX[i] = choice.x;
+        const uint32_t lod = std::min(choice.lod, d.lodCount - 1), fade = std::min(choice.fadeLod, d.lodCount - 1);
+        append(first + lod, i);
+        if (fade != lod)
+            append(first + fade, i | gpu::kLodFadeEntryBit);
+    }
+    d.visibleCopies.clear();
+    for (size_t m = 0; m < d.drawTemplate.size(); ++m)
+        if (draws[m].instanceCount > 0)
+            d.visibleCopies.push_back({d.visibleAt + draws[m].firstInstance * sizeof(uint32_t),
+                                       draws[m].firstInstance * sizeof(uint32_t),
+                                       draws[m].instanceCount * sizeof(uint32_t)});
+    std::memcpy(base + d.statesAt, d.states.data(), d.states.size() * sizeof(gpu::GpuMotionState));
+    std::memcpy(base + d.lodAt, d.lodX.data(), d.lodX.size() * sizeof(float));
+    std::memcpy(base + d.statsAt, &stats, sizeof(stats));
+    return d.visibleAt + uint64_t(d.visibleEntries) * sizeof(uint32_t);
+}
+
+void cpuDriverRecordUploads(CpuDriver& d, const FieldRenderer& r, VkCommandBuffer cmd) {
+    const VkBuffer from = d.staging.buffer;
+    VkBufferCopy states{d.statesAt, 0, d.lodAt - d.statesAt};
+    VkBufferCopy lod{d.lodAt, 0, d.drawsAt - d.lodAt};
+    VkBufferCopy draws{d.drawsAt, 0, d.statsAt - d.drawsAt};
+    VkBufferCopy stats{d.statsAt, 0, sizeof(gpu::GpuCullStats)};
+    vkCmdCopyBuffer(cmd, from, r.motionStates.buffer, 1, &states);
+    vkCmdCopyBuffer(cmd, from, r.lodState.buffer, 1, &lod);
+    vkCmdCopyBuffer(cmd, from, r.drawCommands.buffer, 1, &draws);
+    vkCmdCopyBuffer(cmd, from, r.stats.buffer, 1, &stats);
+    if (!d.visibleCopies.empty())
+        vkCmdCopyBuffer(cmd, from, r.visibleList.buffer, uint32_t(d.visibleCopies.size()), d.visibleCopies.data());
+}
+
+void destroyCpuDriver(Context& ctx, CpuDriver& d) {
+    destroyBuffer(ctx, d.staging);
+}
+
+} // namespace meadow
