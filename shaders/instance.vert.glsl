@@ -14,11 +14,10 @@ layout(set = 0, binding = 1, std430) readonly buffer Instances { GpuInstance ins
 layout(set = 0, binding = 2, std430) readonly buffer VisibleList { uint visible[]; };
 layout(set = 0, binding = 3, std430) readonly buffer LodState { float lodX[]; };
 layout(set = 0, binding = 4, std430) readonly buffer Clumps { GpuClump clumps[]; };
-layout(set = 0, binding = 5, std430) readonly buffer PlantVertices { GpuPlantVertex plantVertices[]; };
-layout(set = 0, binding = 6, std430) readonly buffer LodVertices { GpuLodVertex lodVertices[]; };
-layout(set = 0, binding = 7, std430) readonly buffer MotionData { float motionData[]; };
-layout(set = 0, binding = 8, std430) readonly buffer MotionStates { GpuMotionState states[]; };
-layout(set = 0, binding = 9, std430) readonly buffer VertexLight { vec4 vertexLight[]; };
+layout(set = 0, binding = 5, std430) readonly buffer LodVertices { GpuLodVertex lodVertices[]; };
+layout(set = 0, binding = 6, std430) readonly buffer MotionData { float motionData[]; };
+layout(set = 0, binding = 7, std430) readonly buffer MotionStates { GpuMotionState states[]; };
+layout(set = 0, binding = 8, std430) readonly buffer VertexLight { uvec4 vertexLight[]; };
 // xz: the unit normal of the vertical plane that holds the wind direction the clumps were
 // simulated in. A mirrored instance (negative scale) reflects about it before its yaw, so it
 // still sways downwind (placement/instance.h).
@@ -49,32 +48,42 @@ void main() {
     outFade = frame.counts.w > 1u ? x - floor(x) : 0.0;
     outIsFadeLod = (entry & kLodFadeEntryBit) != 0u ? 1u : 0u;
 
-    GpuLodVertex lv = lodVertices[gl_VertexIndex];
-    GpuPlantVertex v = plantVertices[lv.vertex];
-    uint rank = lv.rankLod & 0xffffu;
-    outLod = lv.rankLod >> 16u;
+    GpuLodVertex v = lodVertices[gl_VertexIndex];
+    uint rank = v.motion.w & 0xffffu;
+    outLod = v.motion.w >> 16u;
 
     // x̄ + U q, q blended across a graph jump (motion_step.h): the old path's weight fades from 1.
+    // (Vertex shading is lavapipe's single-threaded stage: loads are what it pays for, so the old
+    // path's coordinates are read only while a blend runs.)
     GpuMotionState state = states[index];
-    float blend = state.blendFramesLeft > 0u ? float(state.blendFramesLeft) / float(blendFrames) : 0.0;
     uint q0 = clumpMotion.y + state.frame * clumpMotion.z + v.motion.y;
-    uint q1 = clumpMotion.y + state.blendFrom * clumpMotion.z + v.motion.y;
     vec3 d = vec3(0.0);
-    for (uint k = 0u; k < rank; ++k) {
-        uint row = v.motion.x + 3u * k;
-        float q = mix(motionData[q0 + k], motionData[q1 + k], blend);
-        d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * q;
+    if (state.blendFramesLeft > 0u) {
+        float blend = float(state.blendFramesLeft) / float(blendFrames);
+        uint q1 = clumpMotion.y + state.blendFrom * clumpMotion.z + v.motion.y;
+        for (uint k = 0u; k < rank; ++k) {
+            uint row = v.motion.x + 3u * k;
+            float q = mix(motionData[q0 + k], motionData[q1 + k], blend);
+            d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * q;
+        }
+    } else {
+        for (uint k = 0u; k < rank; ++k) {
+            uint row = v.motion.x + 3u * k;
+            d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * motionData[q0 + k];
+        }
     }
 
     // Irradiance of both sides to first order in d, for this instance's light variant (its yaw
-    // bin, mirrored or not: light.comp).
+    // bin, mirrored or not: light.comp), from half floats: (E, gradient) per side and channel.
     bool mirrored = inst.positionScale.w < 0.0;
     uint bins = clumpLight.y;
     int bin = clamp(int(floor((inst.yaw - clumpYaw.x) * clumpYaw.y)), 0, int(bins) - 1);
     uint variant = uint(bin) + (mirrored ? bins : 0u);
     uint base = clumpLight.x + (v.motion.z * 2u * bins + variant) * kLightVec4sPerVertex;
-    vec4 l0 = vertexLight[base], l1 = vertexLight[base + 1u], l2 = vertexLight[base + 2u];
-    vec4 l3 = vertexLight[base + 3u], l4 = vertexLight[base + 4u], l5 = vertexLight[base + 5u];
+    uvec4 w0 = vertexLight[base], w1 = vertexLight[base + 1u], w2 = vertexLight[base + 2u];
+    vec4 l0 = vec4(unpackHalf2x16(w0.x), unpackHalf2x16(w0.y)), l1 = vec4(unpackHalf2x16(w0.z), unpackHalf2x16(w0.w));
+    vec4 l2 = vec4(unpackHalf2x16(w1.x), unpackHalf2x16(w1.y)), l3 = vec4(unpackHalf2x16(w1.z), unpackHalf2x16(w1.w));
+    vec4 l4 = vec4(unpackHalf2x16(w2.x), unpackHalf2x16(w2.y)), l5 = vec4(unpackHalf2x16(w2.z), unpackHalf2x16(w2.w));
     outFront = max(vec3(l0.x + dot(l0.yzw, d), l1.x + dot(l1.yzw, d), l2.x + dot(l2.yzw, d)), 0.0) / kPi;
     outBack = max(vec3(l3.x + dot(l3.yzw, d), l4.x + dot(l4.yzw, d), l5.x + dot(l5.yzw, d)), 0.0) / kPi;
 

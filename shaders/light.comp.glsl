@@ -15,7 +15,8 @@ MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer Clumps { GpuClump clumps[]; };
 layout(set = 0, binding = 2, std430) readonly buffer Transfer { vec4 transfer[]; };
 layout(set = 0, binding = 3, std430) readonly buffer SkyData { float skyData[]; };
-layout(set = 0, binding = 4, std430) writeonly buffer VertexLight { vec4 vertexLight[]; };
+// Vertex light as half floats (gpu_types.h kLightVec4sPerVertex); ground ratios as float vec4.
+layout(set = 0, binding = 4, std430) writeonly buffer VertexLight { uvec4 vertexLight[]; };
 layout(push_constant) uniform LightParams { uint clumpIndex; };
 
 void main() {
@@ -57,16 +58,19 @@ void main() {
                       vec3(local[3u * i], local[3u * i + 1u], local[3u * i + 2u]);
         }
         vec3 ratio = clamp(shaded / max(open, vec3(1e-9)), vec3(0.0), vec3(2.0));
-        vertexLight[clump.ground.y + variant * points + vertex] = vec4(ratio, 1.0);
+        vertexLight[clump.ground.y + variant * points + vertex] = floatBitsToUint(vec4(ratio, 1.0));
         return;
     }
     uint t = clump.light.z + vertex * 54u;
     uint out0 = clump.light.x + (vertex * variants + variant) * kLightVec4sPerVertex;
-    for (uint sc = 0u; sc < 6u; ++sc) { // side-major, then channel (transfer.h)
-        uint c = sc % 3u;
-        vec4 sum = vec4(0.0);
-        for (uint i = 0u; i < 9u; ++i)
-            sum += transfer[t + sc * 9u + i] * local[3u * i + c];
-        vertexLight[out0 + sc] = sum;
+    // Side-major, then channel (transfer.h); two (E, gradient) groups per uvec4 of half floats.
+    for (uint k = 0u; k < 3u; ++k) {
+        uint sa = 2u * k, sb = 2u * k + 1u;
+        vec4 a = vec4(0.0), b = vec4(0.0);
+        for (uint i = 0u; i < 9u; ++i) {
+            a += transfer[t + sa * 9u + i] * local[3u * i + sa % 3u];
+            b += transfer[t + sb * 9u + i] * local[3u * i + sb % 3u];
+        }
+        vertexLight[out0 + k] = uvec4(packHalf2x16(a.xy), packHalf2x16(a.zw), packHalf2x16(b.xy), packHalf2x16(b.zw));
     }
 }

@@ -137,11 +137,11 @@ int runSheet(const Args& argv) {
                 uint32_t frame = frames[size_t(c) * frames.size() / columns];
                 // The posed mesh over the renderer's (static) clump vertices.
                 Mesh posed = meshAtFrame(clump.mesh, clump.motion, frame);
-                std::vector<gpu::GpuPlantVertex> vertices(posed.vertices.size());
+                // (A static clump of one LOD: its LOD vertices are the mesh's, in order.)
+                std::vector<gpu::GpuLodVertex> vertices(posed.vertices.size());
                 for (uint32_t v = 0; v < vertices.size(); ++v)
                     vertices[v] = {posed.vertices[v].positionU, posed.vertices[v].normalV, gpu::uvec4(0u, 0u, v, 0u)};
-                uploadToBuffer(ctx, renderer.plantVertices, vertices.data(),
-                               vertices.size() * sizeof(gpu::GpuPlantVertex));
+                uploadToBuffer(ctx, renderer.lodVertices, vertices.data(), vertices.size() * sizeof(gpu::GpuLodVertex));
                 renderOffscreenFrame(ctx, renderer, offscreen, state);
                 place(sheet, columns, level, c, readLdrPixels(ctx, offscreen.targets));
             }

@@ -171,7 +171,6 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
 
     // Every clump's data goes into shared buffers; GpuClump says where.
     std::vector<gpu::GpuClump> gpuClumps;
-    std::vector<gpu::GpuPlantVertex> plantVertices;
     std::vector<gpu::GpuLodVertex> lodVertices;
     std::vector<uint32_t> indices;
     std::vector<float> motionData;
@@ -185,14 +184,13 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
         const bool moving = motion.frames > 0;
         const uint32_t vertexCount = uint32_t(clump.mesh.vertices.size());
         gpu::GpuClump g{};
-        const uint32_t vertexBase = uint32_t(plantVertices.size());
         const uint32_t basisBase = uint32_t(motionData.size());
         if (moving)
             motionData.insert(motionData.end(), motion.basis.begin(), motion.basis.end());
         const uint32_t coordBase = uint32_t(motionData.size());
         if (moving)
             motionData.insert(motionData.end(), motion.coords.begin(), motion.coords.end());
-        g.motion = gpu::uvec4(vertexBase, coordBase, moving ? motion.modesPerFrame() : 0u, moving ? motion.frames : 1u);
+        g.motion = gpu::uvec4(0u, coordBase, moving ? motion.modesPerFrame() : 0u, moving ? motion.frames : 1u);
 
         // The walk's tables; a static clump gets one frame that holds still.
         MotionGraph still;
@@ -215,17 +213,6 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
         g.graph = gpu::uvec4(startAt, targetAt, weightAt, nextAt);
         g.graphSizes = gpu::uvec4(graph.edgeCount, graph.levelCount, std::max(graph.blendFrames, 1u), 0u);
 
-        for (uint32_t v = 0; v < vertexCount; ++v) {
-            gpu::GpuPlantVertex pv{};
-            pv.positionU = clump.mesh.vertices[v].positionU;
-            pv.normalV = clump.mesh.vertices[v].normalV;
-            if (moving)
-                pv.motion = gpu::uvec4(basisBase + motion.vertexRowOffset[v],
-                                       motion.blocks[motion.vertexBlock[v]].coordOffset, v, 0u);
-            else
-                pv.motion = gpu::uvec4(0u, 0u, v, 0u);
-            plantVertices.push_back(pv);
-        }
         for (uint32_t l = 0; l < r.lodCount; ++l) {
             const FieldLod& lod = clump.lods[l];
             gpu::GpuDrawIndexedCommand& draw = draws[ci * r.lodCount + l];
@@ -233,9 +220,14 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
             draw.firstIndex = uint32_t(indices.size());
             draw.vertexOffset = int32_t(lodVertices.size());
             for (uint32_t v : lod.vertices) {
-                const uint32_t rank =
-                    moving ? motion.blocks[motion.vertexBlock[v]].ranks[std::min(l, kLodCount - 1)] : 0u;
-                lodVertices.push_back({vertexBase + v, rank | (l << 16)});
+                gpu::GpuLodVertex lv{clump.mesh.vertices[v].positionU, clump.mesh.vertices[v].normalV,
+                                     gpu::uvec4(0u, 0u, v, l << 16)};
+                if (moving) {
+                    const MotionBlock& block = motion.blocks[motion.vertexBlock[v]];
+                    lv.motion = gpu::uvec4(basisBase + motion.vertexRowOffset[v], block.coordOffset, v,
+                                           block.ranks[std::min(l, kLodCount - 1)] | (l << 16));
+                }
+                lodVertices.push_back(lv);
             }
             indices.insert(indices.end(), lod.indices.begin(), lod.indices.end());
             r.meshTriangles.push_back(uint32_t(lod.indices.size() / 3));
@@ -343,7 +335,6 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
     const std::vector<float> lodStart(instances.size(), 0.0f);
     deviceBuffer(r.lodState, lodStart.data(), lodStart.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.clumps, gpuClumps.data(), gpuClumps.size() * sizeof(gpu::GpuClump));
-    deviceBuffer(r.plantVertices, plantVertices.data(), plantVertices.size() * sizeof(gpu::GpuPlantVertex));
     deviceBuffer(r.lodVertices, lodVertices.data(), lodVertices.size() * sizeof(gpu::GpuLodVertex));
     deviceBuffer(r.motionData, motionData.data(), motionData.size() * sizeof(float));
     deviceBuffer(r.motionGraph, motionGraph.data(), motionGraph.size() * sizeof(uint32_t));
@@ -380,10 +371,10 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance, &r.groundMap})
         destroyPipeline(ctx, *p);
-    for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,        &r.clumps,
-                      &r.plantVertices, &r.lodVertices, &r.indices,       &r.motionData,      &r.motionGraph,
-                      &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,    &r.drawCommandTemplate,
-                      &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices, &r.terrainIndices})
+    for (Buffer* b :
+         {&r.frameUniforms, &r.instances, &r.motionStates, &r.lodState, &r.clumps, &r.lodVertices, &r.indices,
+          &r.motionData, &r.motionGraph, &r.transfer, &r.vertexLight, &r.skyData, &r.drawCommands,
+          &r.drawCommandTemplate, &r.visibleList, &r.stats, &r.statsReadback, &r.terrainVertices, &r.terrainIndices})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     destroyImage(ctx, r.groundLight);
@@ -454,8 +445,11 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
 void updateFrame(FieldRenderer& r, const FrameState& state) {
     const gpu::GpuFrame f = frameUniforms(r, state);
     r.lastTick = int64_t(f.counts.z);
-    r.lightThisFrame =
-        !r.lightValid || f.skyFrames.x != r.litSky.x || f.skyFrames.y != r.litSky.y || f.skyBlend.x != r.litWeight;
+    // The light pass (and the ground light map) follow the sky in steps of 1/32 of the blend
+    // between two sky frames (9 s of daylight with the full preset's 5-minute frames): finer
+    // steps change no pixel that anyone could see, and each costs a pass over every clump vertex.
+    r.lightThisFrame = !r.lightValid || f.skyFrames.x != r.litSky.x || f.skyFrames.y != r.litSky.y ||
+                       std::abs(f.skyBlend.x - r.litWeight) >= 1.0f / 32.0f;
     if (r.lightThisFrame) {
         r.litSky = f.skyFrames;
         r.litWeight = f.skyBlend.x;
@@ -615,8 +609,8 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     // by LOD (LOD 0 is nearest; buckets are clump-major, so LOD l's are every lodCount-th command),
     // then the terrain, then the sky where nothing else was drawn.
     bindPipeline(ctx, cmd, r.instance,
-                 {r.frameUniforms, r.instances, r.visibleList, r.lodState, r.clumps, r.plantVertices, r.lodVertices,
-                  r.motionData, r.motionStates, r.vertexLight,
+                 {r.frameUniforms, r.instances, r.visibleList, r.lodState, r.clumps, r.lodVertices, r.motionData,
+                  r.motionStates, r.vertexLight,
                   Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
     vkCmdPushConstants(cmd, r.instance.layout, r.instance.pushConstantStages, 0, sizeof(glm::vec4), &r.mirrorNormal);
     vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);

@@ -112,7 +112,6 @@ struct FieldRenderer {
     Buffer motionStates; // per instance gpu::GpuMotionState
     Buffer lodState;     // per instance: its LOD coordinate, kept from frame to frame (lod_select.h)
     Buffer clumps;       // gpu::GpuClump
-    Buffer plantVertices;
     Buffer lodVertices;
     Buffer indices;
     Buffer motionData;          // floats: per clump its basis rows, then its coordinates frame by frame
@@ -151,11 +150,11 @@ struct FieldRenderer {
     // Host state carried from frame to frame.
     sky::SkyDay skyDay; // CPU copy for the blend, exposure and horizon colour
     float brightestIrradiance = 1.0f;
-    int64_t lastTick = -1;   // the motion tick the states show
-    bool lightValid = false; // vertexLight holds the current sky
-    gpu::uvec4 litSky{0u};   // the sky frames it was projected for
-    float litWeight = -1.0f; // and their weight
-    bool lightThisFrame = false;
+    int64_t lastTick = -1;       // the motion tick the states show
+    bool lightValid = false;     // vertexLight holds the current sky
+    gpu::uvec4 litSky{0u};       // the sky frames it was projected for
+    float litWeight = -1.0f;     // and their weight
+    bool lightThisFrame = false; // the sky moved by 1/32 of a sky frame since the last light pass
     bool cullThisFrame = true;
     bool culledOnce = false;
     uint64_t uploadBytesLastFrame = 0; // bytes the CPU wrote for the last frame (uniforms, push constants)

@@ -32,8 +32,7 @@ static_assert(offsetof(GpuFrame, groundMap) == 464);
 static_assert(sizeof(GpuFrame) == 480);
 
 static_assert(sizeof(GpuClump) == 112 && offsetof(GpuClump, ground) == 80 && offsetof(GpuClump, albedo) == 96);
-static_assert(sizeof(GpuPlantVertex) == 48 && offsetof(GpuPlantVertex, motion) == 32);
-static_assert(sizeof(GpuLodVertex) == 8);
+static_assert(sizeof(GpuLodVertex) == 48 && offsetof(GpuLodVertex, motion) == 32);
 
 static_assert(offsetof(GpuInstance, positionScale) == 0);
 static_assert(offsetof(GpuInstance, yaw) == 16);

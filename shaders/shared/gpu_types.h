@@ -28,8 +28,9 @@ MEADOW_CONST kTonemapGroupSize = 8;
 // than stepping every instance hundreds of times).
 MEADOW_CONST kMaxMotionStepsPerFrame = 8;
 // Per clump vertex and light variant: irradiance of the front and back side in RGB, each with its
-// gradient in the vertex's displacement: (E, dE/dx, dE/dy, dE/dz) per side and channel.
-MEADOW_CONST kLightVec4sPerVertex = 6;
+// gradient in the vertex's displacement, (E, dE/dx, dE/dy, dE/dz) per side and channel, as half
+// floats: 24 halves in 3 uvec4 (packHalf2x16 pairs: value k of the 24 in word k / 2).
+MEADOW_CONST kLightVec4sPerVertex = 3;
 // One frame of the sky day in the skyData buffer: floats [0, 27) the RGB SH (sh[3 i + c], order
 // 3), [28, 31) the sun direction, [32, 35) the sun disk's radiance, then from kSkyFrameHeaderFloats
 // the backdrop image (light/latlong.h layout, RGB).
@@ -77,7 +78,7 @@ struct GpuInstance {
 // One clump (or rock) of the field: where its data lie in the shared buffers. Static meshes have
 // no motion modes and a one-node motion graph.
 struct GpuClump {
-    uvec4 motion;     // x first vertex (GpuPlantVertex), y first coordinate (motionData), z coordinates
+    uvec4 motion;     // x unused, y first coordinate (motionData), z coordinates
                       // per frame, w frames
     uvec4 graph;      // offsets into motionGraph: x edgeStart, y edgeTarget, z edgeWeight, w naturalNext
     uvec4 graphSizes; // x edges, y wind levels, z blend frames, w unused
@@ -91,18 +92,15 @@ struct GpuClump {
     vec4 albedo;      // rgb constant albedo, w 1: use it instead of the atlas
 };
 
-// One vertex of a clump at its mean pose, with where its motion rows lie.
-struct GpuPlantVertex {
+// One vertex of a clump's LOD mesh, pulled by gl_VertexIndex: the clump vertex at its mean pose
+// and where its motion rows and light lie. LODs share clump vertices, so a vertex appears once
+// per LOD that keeps it (with that LOD's rank).
+struct GpuLodVertex {
     vec4 positionU; // xyz mean position (clump space), w texture u
     vec4 normalV;   // xyz mean normal, w texture v
-    uvec4 motion;   // x first basis value in motionData (3 per mode), y the vertex's first coordinate
-                    // in a frame of q, z clump-local vertex index, w unused
-};
-
-// One vertex of a LOD mesh: the clump vertex it is and how many of its modes this LOD plays.
-struct GpuLodVertex {
-    uint vertex;  // global GpuPlantVertex index
-    uint rankLod; // low 16 bits: motion modes used at this LOD; high 16 bits: the LOD (debug view)
+    uvec4 motion;   // x first basis value in motionData (3 per mode), y the vertex's first coordinate in a
+                    // frame of q, z clump-local vertex index (its light), w modes at this LOD (low 16
+                    // bits) and the LOD (high 16 bits)
 };
 
 // One instance's walk, integers only (16 bytes; std430 and std140 compatible). The vertex shader

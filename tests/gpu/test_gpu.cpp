@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -570,6 +571,14 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
     renderOffscreenFrame(*context, renderer, offscreen, frameState(Camera{}, 16, 16));
     std::vector<glm::vec4> light(renderer.vertexLight.size / sizeof(glm::vec4));
     readbackBuffer(*context, renderer.vertexLight, light.data(), renderer.vertexLight.size);
+    std::vector<glm::uvec4> words(light.size());
+    std::memcpy(words.data(), light.data(), words.size() * sizeof(glm::uvec4));
+    // (E, gradient) of side-and-channel sc at a vertex's first uvec4: half floats, two per word.
+    auto lit = [&](size_t first, uint32_t sc) {
+        const glm::uvec4 w = words[first + sc / 2];
+        const uint32_t a = sc % 2 == 0 ? w.x : w.z, b = sc % 2 == 0 ? w.y : w.w;
+        return glm::vec4(glm::unpackHalf2x16(a), glm::unpackHalf2x16(b));
+    };
 
     const std::vector<float>& sky = scenery.sky.frames[0].sh;
     std::vector<glm::dvec3> skyRgb(9);
@@ -597,8 +606,7 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
                 for (int i = 0; i < 9; ++i)
                     e += band[i] * y[i] * skyRgb[i];
                 for (uint32_t c = 0; c < 3; ++c) {
-                    const glm::vec4 g =
-                        light[(size_t(v) * variants + variant) * gpu::kLightVec4sPerVertex + side * 3 + c];
+                    const glm::vec4 g = lit((size_t(v) * variants + variant) * gpu::kLightVec4sPerVertex, side * 3 + c);
                     worst = std::max(worst, std::abs(double(g.x) - e[c]));
                     scale = std::max(scale, std::abs(e[c]));
                     EXPECT_EQ(g.y, 0.0f);
@@ -606,7 +614,7 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
             }
         }
     EXPECT_GT(scale, 0.01);
-    EXPECT_LT(worst, 1e-4 * scale) << "irradiance of the unshadowed clump";
+    EXPECT_LT(worst, 1e-3 * scale) << "irradiance of the unshadowed clump (half floats)";
     // Its ground: open ground passes all the light, the shaded point a quarter, in every variant.
     const size_t groundBase = size_t(vertices) * variants * gpu::kLightVec4sPerVertex;
     for (uint32_t variant = 0; variant < variants; ++variant)
@@ -635,7 +643,7 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
                     for (uint32_t k = 0; k < 4; ++k)
                         expected[k] +=
                             double(graded.transfer[(size_t(v) * 54 + sc * 9 + i) * 4 + k]) * local[3 * i + sc % 3];
-                const glm::vec4 g = light[base + (size_t(v) * variants + variant) * gpu::kLightVec4sPerVertex + sc];
+                const glm::vec4 g = lit(base + (size_t(v) * variants + variant) * gpu::kLightVec4sPerVertex, sc);
                 for (int k = 0; k < 4; ++k) {
                     worst = std::max(worst, std::abs(double(g[k]) - expected[k]));
                     scale = std::max(scale, std::abs(expected[k]));
@@ -643,7 +651,7 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
             }
         }
     EXPECT_GT(scale, 0.01);
-    EXPECT_LT(worst, 1e-4 * scale) << "transfer with gradients";
+    EXPECT_LT(worst, 1e-3 * scale) << "transfer with gradients (half floats)";
     destroyOffscreen(*context, offscreen);
     destroyFieldRenderer(*context, renderer);
 }
