@@ -7,6 +7,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "lod_select.h"
+#include "draw_instance.h"
 
 layout(local_size_x = kCullGroupSize) in;
 
@@ -16,6 +17,10 @@ layout(set = 0, binding = 2, std430) buffer DrawCommands { GpuDrawIndexedCommand
 layout(set = 0, binding = 3, std430) writeonly buffer VisibleList { uint visible[]; };
 layout(set = 0, binding = 4, std430) buffer Stats { GpuCullStats stats; };
 layout(set = 0, binding = 5, std430) buffer LodState { float lodX[]; };
+layout(set = 0, binding = 6, std430) readonly buffer Clumps { GpuClump clumps[]; };
+layout(set = 0, binding = 7, std430) readonly buffer MotionStates { GpuMotionState states[]; };
+// Per visible instance, what its vertices need (draw_instance.h), indexed like the instances.
+layout(set = 0, binding = 8, std430) writeonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
 
 void append(uint bucket, uint entry) {
     uint slot = atomicAdd(draws[bucket].instanceCount, 1u);
@@ -50,6 +55,7 @@ void main() {
         uint lodCount = frame.counts.w;
         uint first = inst.mesh * lodCount;
         if (lodCount <= 1u) {
+            drawInstances[index] = makeDrawInstance(inst, clumps[inst.mesh], states[index], 0.0, false);
             append(first, index);
             return;
         }
@@ -68,6 +74,7 @@ void main() {
         p.pad = 0.0;
         GpuLodChoice c = lodSelect(p, screenRadius, lodInstanceRandom(index), lodX[index]);
         lodX[index] = c.x;
+        drawInstances[index] = makeDrawInstance(inst, clumps[inst.mesh], states[index], c.x, true);
         uint lod = min(c.lod, lodCount - 1u), fadeLod = min(c.fadeLod, lodCount - 1u);
         append(first + lod, index);
         if (fadeLod != lod)

@@ -8,16 +8,15 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "lod_select.h"
+#include "draw_instance.h"
 
 MEADOW_FRAME_BLOCK(0, 0)
-layout(set = 0, binding = 1, std430) readonly buffer Instances { GpuInstance instances[]; };
-layout(set = 0, binding = 2, std430) readonly buffer VisibleList { uint visible[]; };
-layout(set = 0, binding = 3, std430) readonly buffer LodState { float lodX[]; };
-layout(set = 0, binding = 4, std430) readonly buffer Clumps { GpuClump clumps[]; };
-layout(set = 0, binding = 5, std430) readonly buffer LodVertices { GpuLodVertex lodVertices[]; };
-layout(set = 0, binding = 6, std430) readonly buffer MotionData { float motionData[]; };
-layout(set = 0, binding = 7, std430) readonly buffer MotionStates { GpuMotionState states[]; };
-layout(set = 0, binding = 8, std430) readonly buffer VertexLight { uvec4 vertexLight[]; };
+layout(set = 0, binding = 1, std430) readonly buffer VisibleList { uint visible[]; };
+layout(set = 0, binding = 2, std430) readonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
+layout(set = 0, binding = 3, std430) readonly buffer Clumps { GpuClump clumps[]; };
+layout(set = 0, binding = 4, std430) readonly buffer LodVertices { GpuLodVertex lodVertices[]; };
+layout(set = 0, binding = 5, std430) readonly buffer MotionData { float motionData[]; };
+layout(set = 0, binding = 6, std430) readonly buffer VertexLight { uvec4 vertexLight[]; };
 // xz: the unit normal of the vertical plane that holds the wind direction the clumps were
 // simulated in. A mirrored instance (negative scale) reflects about it before its yaw, so it
 // still sways downwind (placement/instance.h).
@@ -36,16 +35,8 @@ layout(location = 8) flat out uint outLod;
 
 void main() {
     uint entry = visible[gl_InstanceIndex];
-    uint index = entry & ~kLodFadeEntryBit;
-    GpuInstance inst = instances[index];
-    // Only the fields used: lavapipe (Mesa 22.3) at 128-bit vectors corrupted its heap copying the
-    // whole GpuClump into the vertex shader's locals.
-    uvec4 clumpMotion = clumps[inst.mesh].motion;
-    uvec4 clumpLight = clumps[inst.mesh].light;
-    vec4 clumpYaw = clumps[inst.mesh].yawBins;
-    uint blendFrames = clumps[inst.mesh].graphSizes.z;
-    float x = lodX[index];
-    outFade = frame.counts.w > 1u ? x - floor(x) : 0.0;
+    GpuDrawInstance inst = drawInstances[entry & ~kLodFadeEntryBit];
+    outFade = inst.pose.w;
     outIsFadeLod = (entry & kLodFadeEntryBit) != 0u ? 1u : 0u;
 
     GpuLodVertex v = lodVertices[gl_VertexIndex];
@@ -55,15 +46,13 @@ void main() {
     // x̄ + U q, q blended across a graph jump (motion_step.h): the old path's weight fades from 1.
     // (Vertex shading is lavapipe's single-threaded stage: loads are what it pays for, so the old
     // path's coordinates are read only while a blend runs.)
-    GpuMotionState state = states[index];
-    uint q0 = clumpMotion.y + state.frame * clumpMotion.z + v.motion.y;
+    uint q0 = inst.offsets.x + v.motion.y;
     vec3 d = vec3(0.0);
-    if (state.blendFramesLeft > 0u) {
-        float blend = float(state.blendFramesLeft) / float(blendFrames);
-        uint q1 = clumpMotion.y + state.blendFrom * clumpMotion.z + v.motion.y;
+    if (inst.pose.z > 0.0) {
+        uint q1 = inst.offsets.y + v.motion.y;
         for (uint k = 0u; k < rank; ++k) {
             uint row = v.motion.x + 3u * k;
-            float q = mix(motionData[q0 + k], motionData[q1 + k], blend);
+            float q = mix(motionData[q0 + k], motionData[q1 + k], inst.pose.z);
             d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * q;
         }
     } else {
@@ -75,11 +64,7 @@ void main() {
 
     // Irradiance of both sides to first order in d, for this instance's light variant (its yaw
     // bin, mirrored or not: light.comp), from half floats: (E, gradient) per side and channel.
-    bool mirrored = inst.positionScale.w < 0.0;
-    uint bins = clumpLight.y;
-    int bin = clamp(int(floor((inst.yaw - clumpYaw.x) * clumpYaw.y)), 0, int(bins) - 1);
-    uint variant = uint(bin) + (mirrored ? bins : 0u);
-    uint base = clumpLight.x + (v.motion.z * 2u * bins + variant) * kLightVec4sPerVertex;
+    uint base = inst.offsets.z + v.motion.z * (inst.offsets.w & 0xffffu);
     uvec4 w0 = vertexLight[base], w1 = vertexLight[base + 1u], w2 = vertexLight[base + 2u];
     vec4 l0 = vec4(unpackHalf2x16(w0.x), unpackHalf2x16(w0.y)), l1 = vec4(unpackHalf2x16(w0.z), unpackHalf2x16(w0.w));
     vec4 l2 = vec4(unpackHalf2x16(w1.x), unpackHalf2x16(w1.y)), l3 = vec4(unpackHalf2x16(w1.z), unpackHalf2x16(w1.w));
@@ -87,18 +72,19 @@ void main() {
     outFront = max(vec3(l0.x + dot(l0.yzw, d), l1.x + dot(l1.yzw, d), l2.x + dot(l2.yzw, d)), 0.0) / kPi;
     outBack = max(vec3(l3.x + dot(l3.yzw, d), l4.x + dot(l4.yzw, d), l5.x + dot(l5.yzw, d)), 0.0) / kPi;
 
+    bool mirrored = inst.positionScale.w < 0.0;
     vec3 p = v.positionU.xyz + d, n = v.normalV.xyz;
     if (mirrored) {
         vec3 m = vec3(mirrorNormal.x, 0.0, mirrorNormal.z);
         p -= 2.0 * dot(p, m) * m;
         n -= 2.0 * dot(n, m) * m;
     }
-    float s = sin(inst.yaw), c = cos(inst.yaw);
+    float c = inst.pose.x, s = inst.pose.y;
     mat3 yaw = mat3(c, 0.0, -s, 0.0, 1.0, 0.0, s, 0.0, c);
     vec3 world = inst.positionScale.xyz + yaw * (p * abs(inst.positionScale.w));
     gl_Position = frame.viewProj * vec4(world, 1.0);
     outWorld = world;
     outNormal = yaw * n;
     outUv = vec2(v.positionU.w, v.normalV.w);
-    outAlbedo = clumps[inst.mesh].albedo;
+    outAlbedo = clumps[inst.offsets.w >> 16u].albedo;
 }

@@ -16,14 +16,17 @@ struct CpuDriver {
     std::vector<gpu::MotionTables> tables;   // views of graphs
     std::vector<gpu::GpuMotionState> states; // what the GPU states would hold
     std::vector<float> lodX;
+    std::vector<gpu::GpuClump> clumps;
     std::vector<gpu::GpuDrawIndexedCommand> drawTemplate;
     uint32_t lodCount = 1;
-    // Staging, host-visible: motion states, LOD coordinates, draw commands, statistics and the
-    // visible list, in this order.
+    // Staging, host-visible: per-instance draw records, draw commands, statistics and the visible
+    // list, in this order.
     Buffer staging;
-    size_t statesAt = 0, lodAt = 0, drawsAt = 0, statsAt = 0, visibleAt = 0;
+    size_t recordsAt = 0, drawsAt = 0, statsAt = 0, visibleAt = 0;
     uint32_t visibleEntries = 0;             // written this frame
     std::vector<VkBufferCopy> visibleCopies; // this frame's used part of each bucket's range
+    std::vector<VkBufferCopy> recordCopies;  // this frame's visible instances' records, in runs
+    uint64_t recordBytes = 0;
 };
 
 void enableCpuDriver(Context& ctx, FieldRenderer& r, std::span<const FieldClump> clumps,
@@ -43,12 +46,13 @@ void enableCpuDriver(Context& ctx, FieldRenderer& r, std::span<const FieldClump>
     d->states.resize(instances.size());
     readbackBuffer(ctx, r.motionStates, d->states.data(), d->states.size() * sizeof(gpu::GpuMotionState));
     d->lodX.assign(instances.size(), 0.0f);
+    d->clumps.resize(clumps.size());
+    readbackBuffer(ctx, r.clumps, d->clumps.data(), d->clumps.size() * sizeof(gpu::GpuClump));
     d->drawTemplate.resize(r.meshCount);
     readbackBuffer(ctx, r.drawCommandTemplate, d->drawTemplate.data(),
                    d->drawTemplate.size() * sizeof(gpu::GpuDrawIndexedCommand));
-    d->statesAt = 0;
-    d->lodAt = d->statesAt + d->states.size() * sizeof(gpu::GpuMotionState);
-    d->drawsAt = d->lodAt + d->lodX.size() * sizeof(float);
+    d->recordsAt = 0;
+    d->drawsAt = d->recordsAt + instances.size() * sizeof(gpu::GpuDrawInstance);
     d->statsAt = d->drawsAt + d->drawTemplate.size() * sizeof(gpu::GpuDrawIndexedCommand);
     d->visibleAt = d->statsAt + sizeof(gpu::GpuCullStats);
     d->staging =
@@ -79,6 +83,19 @@ uint64_t cpuDriverUpdate(CpuDriver& d, const gpu::GpuFrame& frame) {
     char* base = static_cast<char*>(d.staging.mapped());
     auto* draws = reinterpret_cast<gpu::GpuDrawIndexedCommand*>(base + d.drawsAt);
     auto* visible = reinterpret_cast<uint32_t*>(base + d.visibleAt);
+    auto* records = reinterpret_cast<gpu::GpuDrawInstance*>(base + d.recordsAt);
+    d.recordCopies.clear();
+    d.recordBytes = 0;
+    auto record = [&](uint32_t i, float x, bool lodChoice) {
+        const gpu::GpuInstance& inst = d.instances[i];
+        records[i] = gpu::makeDrawInstance(inst, d.clumps[inst.mesh], d.states[i], x, lodChoice);
+        const VkDeviceSize at = VkDeviceSize(i) * sizeof(gpu::GpuDrawInstance);
+        if (!d.recordCopies.empty() && d.recordCopies.back().dstOffset + d.recordCopies.back().size == at)
+            d.recordCopies.back().size += sizeof(gpu::GpuDrawInstance);
+        else
+            d.recordCopies.push_back({d.recordsAt + at, at, sizeof(gpu::GpuDrawInstance)});
+        d.recordBytes += sizeof(gpu::GpuDrawInstance);
+    };
     std::memcpy(draws, d.drawTemplate.data(), d.drawTemplate.size() * sizeof(gpu::GpuDrawIndexedCommand));
     gpu::GpuCullStats stats{};
     d.visibleEntries = 0;
@@ -93,11 +110,13 @@ uint64_t cpuDriverUpdate(CpuDriver& d, const gpu::GpuFrame& frame) {
         ++stats.visibleInstances;
         const uint32_t first = d.instances[i].mesh * d.lodCount;
         if (d.lodCount <= 1) {
+            record(i, 0.0f, false);
             append(first, i);
             continue;
         }
         const gpu::GpuLodChoice choice = lodReference(frame, d.instances[i], i, d.lodX[i]);
         d.lodX[i] = choice.x;
+        record(i, choice.x, true);
         const uint32_t lod = std::min(choice.lod, d.lodCount - 1), fade = std::min(choice.fadeLod, d.lodCount - 1);
         append(first + lod, i);
         if (fade != lod)
@@ -109,24 +128,26 @@ uint64_t cpuDriverUpdate(CpuDriver& d, const gpu::GpuFrame& frame) {
             d.visibleCopies.push_back({d.visibleAt + draws[m].firstInstance * sizeof(uint32_t),
                                        draws[m].firstInstance * sizeof(uint32_t),
                                        draws[m].instanceCount * sizeof(uint32_t)});
-    std::memcpy(base + d.statesAt, d.states.data(), d.states.size() * sizeof(gpu::GpuMotionState));
-    std::memcpy(base + d.lodAt, d.lodX.data(), d.lodX.size() * sizeof(float));
     std::memcpy(base + d.statsAt, &stats, sizeof(stats));
-    return d.visibleAt + uint64_t(d.visibleEntries) * sizeof(uint32_t);
+    // What crosses to the GPU: the visible instances' records, the draws, the statistics and the
+    // used part of the visible lists.
+    return d.recordBytes + (d.visibleAt - d.drawsAt) + uint64_t(d.visibleEntries) * sizeof(uint32_t);
 }
 
 void cpuDriverRecordUploads(CpuDriver& d, const FieldRenderer& r, VkCommandBuffer cmd) {
     const VkBuffer from = d.staging.buffer;
-    VkBufferCopy states{d.statesAt, 0, d.lodAt - d.statesAt};
-    VkBufferCopy lod{d.lodAt, 0, d.drawsAt - d.lodAt};
     VkBufferCopy draws{d.drawsAt, 0, d.statsAt - d.drawsAt};
     VkBufferCopy stats{d.statsAt, 0, sizeof(gpu::GpuCullStats)};
-    vkCmdCopyBuffer(cmd, from, r.motionStates.buffer, 1, &states);
-    vkCmdCopyBuffer(cmd, from, r.lodState.buffer, 1, &lod);
+    if (!d.recordCopies.empty())
+        vkCmdCopyBuffer(cmd, from, r.drawInstances.buffer, uint32_t(d.recordCopies.size()), d.recordCopies.data());
     vkCmdCopyBuffer(cmd, from, r.drawCommands.buffer, 1, &draws);
     vkCmdCopyBuffer(cmd, from, r.stats.buffer, 1, &stats);
     if (!d.visibleCopies.empty())
         vkCmdCopyBuffer(cmd, from, r.visibleList.buffer, uint32_t(d.visibleCopies.size()), d.visibleCopies.data());
+}
+
+const std::vector<gpu::GpuMotionState>& cpuDriverStates(const CpuDriver& d) {
+    return d.states;
 }
 
 void destroyCpuDriver(Context& ctx, CpuDriver& d) {

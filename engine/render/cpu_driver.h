@@ -25,8 +25,12 @@ void enableCpuDriver(Context& context, FieldRenderer& renderer, std::span<const 
 uint64_t cpuDriverUpdate(CpuDriver& driver, const gpu::GpuFrame& frame);
 
 // Called by recordFieldFrame in place of the animate and cull passes: copies the staging buffers
-// into the renderer's device buffers.
+// (the visible instances' draw records, draw commands, statistics, visible lists) into the
+// renderer's device buffers.
 void cpuDriverRecordUploads(CpuDriver& driver, const FieldRenderer& renderer, VkCommandBuffer cmd);
+
+// The motion states the CPU keeps (the GPU's are not used on this path).
+const std::vector<gpu::GpuMotionState>& cpuDriverStates(const CpuDriver& driver);
 
 void destroyCpuDriver(Context& context, CpuDriver& driver);
 

@@ -135,6 +135,8 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
     if (day.frames.empty() || day.shOrder != 3 || day.imageWidth == 0 || day.imageHeight == 0)
         throw Error("the field's sky has " + std::to_string(day.frames.size()) + " frames of SH order " +
                     std::to_string(day.shOrder) + "; the renderer needs at least one frame of order 3");
+    if (clumps.size() > 0xffff)
+        throw Error("the field has " + std::to_string(clumps.size()) + " clumps; the renderer draws at most 65535");
     for (size_t c = 0; c < clumps.size(); ++c)
         checkClump(clumps[c], c, scenery.lodCount);
 
@@ -334,7 +336,10 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     const std::vector<float> lodStart(instances.size(), 0.0f);
     deviceBuffer(r.lodState, lodStart.data(), lodStart.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    deviceBuffer(r.clumps, gpuClumps.data(), gpuClumps.size() * sizeof(gpu::GpuClump));
+    deviceBuffer(r.clumps, gpuClumps.data(), gpuClumps.size() * sizeof(gpu::GpuClump),
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT); // read back by the CPU-driven path
+    deviceBuffer(r.drawInstances, nullptr, instances.size() * sizeof(gpu::GpuDrawInstance),
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.lodVertices, lodVertices.data(), lodVertices.size() * sizeof(gpu::GpuLodVertex));
     deviceBuffer(r.motionData, motionData.data(), motionData.size() * sizeof(float));
     deviceBuffer(r.motionGraph, motionGraph.data(), motionGraph.size() * sizeof(uint32_t));
@@ -371,10 +376,10 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance, &r.groundMap})
         destroyPipeline(ctx, *p);
-    for (Buffer* b :
-         {&r.frameUniforms, &r.instances, &r.motionStates, &r.lodState, &r.clumps, &r.lodVertices, &r.indices,
-          &r.motionData, &r.motionGraph, &r.transfer, &r.vertexLight, &r.skyData, &r.drawCommands,
-          &r.drawCommandTemplate, &r.visibleList, &r.stats, &r.statsReadback, &r.terrainVertices, &r.terrainIndices})
+    for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,        &r.drawInstances,
+                      &r.clumps,        &r.lodVertices, &r.indices,       &r.motionData,      &r.motionGraph,
+                      &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,    &r.drawCommandTemplate,
+                      &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices, &r.terrainIndices})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     destroyImage(ctx, r.groundLight);
@@ -518,11 +523,13 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     if (timer)
         markTimestamp(*timer, cmd, "animate");
 
-    barrier(cmd, access::kTransferWrite,
+    // The cull pass reads the motion states animate wrote (for the draw records).
+    barrier(cmd, access::kTransferWrite | access::kComputeReadWrite,
             access::kComputeReadWrite | access::kIndirectRead | access::kVertexShaderRead | access::kTransferRead);
     if (r.cullThisFrame && !r.cpuDriver) {
         bindPipeline(ctx, cmd, r.cull,
-                     {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState});
+                     {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState, r.clumps,
+                      r.motionStates, r.drawInstances});
         dispatchCovering(cmd, r.cull, r.instanceCount);
     }
     if (timer)
@@ -609,8 +616,7 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     // by LOD (LOD 0 is nearest; buckets are clump-major, so LOD l's are every lodCount-th command),
     // then the terrain, then the sky where nothing else was drawn.
     bindPipeline(ctx, cmd, r.instance,
-                 {r.frameUniforms, r.instances, r.visibleList, r.lodState, r.clumps, r.lodVertices, r.motionData,
-                  r.motionStates, r.vertexLight,
+                 {r.frameUniforms, r.visibleList, r.drawInstances, r.clumps, r.lodVertices, r.motionData, r.vertexLight,
                   Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
     vkCmdPushConstants(cmd, r.instance.layout, r.instance.pushConstantStages, 0, sizeof(glm::vec4), &r.mirrorNormal);
     vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);

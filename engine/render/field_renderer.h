@@ -9,6 +9,7 @@
 // GPU timestamps bracket "animate", "cull", "light", "draw" and "tonemap".
 #pragma once
 
+#include "draw_instance.h"
 #include "gpu_types.h"
 #include "lod_select.h"
 #include "mesh.h"
@@ -93,7 +94,7 @@ struct FrameState {
     WindState wind;
     uint32_t debugView = gpu::kDebugViewNone;
     // Keep the last culled frame's visible lists and LODs (to look at what culling chose from
-    // elsewhere); ignored until one frame has been culled.
+    // elsewhere; the clumps hold still meanwhile); ignored until one frame has been culled.
     bool freezeCulling = false;
 };
 
@@ -109,9 +110,10 @@ struct FieldRenderer {
 
     Buffer frameUniforms; // host-written each frame: the only per-frame upload
     Buffer instances;
-    Buffer motionStates; // per instance gpu::GpuMotionState
-    Buffer lodState;     // per instance: its LOD coordinate, kept from frame to frame (lod_select.h)
-    Buffer clumps;       // gpu::GpuClump
+    Buffer motionStates;  // per instance gpu::GpuMotionState
+    Buffer lodState;      // per instance: its LOD coordinate, kept from frame to frame (lod_select.h)
+    Buffer drawInstances; // per instance, written while visible: what its vertices need (draw_instance.h)
+    Buffer clumps;        // gpu::GpuClump
     Buffer lodVertices;
     Buffer indices;
     Buffer motionData;          // floats: per clump its basis rows, then its coordinates frame by frame
