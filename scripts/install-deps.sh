@@ -8,14 +8,16 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   # Vulkan: loader, headers, lavapipe, validation layers, shader compiler and validator
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools spirv-tools
-  # windowing, math, assets, images
-  libglfw3-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev openimageio-tools
+  # windowing, the walkthrough's HUD (Dear ImGui with its GLFW and Vulkan backends), math, assets, images
+  libglfw3-dev libimgui-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev openimageio-tools
   # precompute: linear algebra (PCA), parallel loops
   libeigen3-dev libtbb-dev
   # precompute: ray casting for the light-transfer bake, vertex-cache optimisation of the LODs
   libembree-dev libmeshoptimizer-dev
   # tests: GoogleTest, an X server and a window manager (so minimising is real) for window tests
   libgtest-dev xvfb xauth openbox python3
+  # robustness: clang with libFuzzer and its sanitizer runtimes (scripts/fuzz.sh)
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -3,6 +3,7 @@
 #include "app/session.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "render/camera_path.h"
 #include "render/cpu_driver.h"
 #include "render/offscreen.h"
 
@@ -31,6 +32,8 @@ options:
                         and gusts travel over it
   --debug-lod           colour each clump by its level of detail
   --camera EX,EY,EZ,TX,TY,TZ   eye and target in metres (default: the scene's)
+  --camera-path FILE    a camera path (JSON keyframes, as meadow view records): frame i sees the
+                        path at i/30 s; without --frames, every frame of the path is rendered
   --preset ci|full      scene preset (default full)
   --seed S              override the scene's seed
   --device N|NAME       Vulkan device by index or part of its name (or MEADOW_DEVICE)
@@ -48,6 +51,7 @@ options:
   --clumps N            clumps in the field: the scene's clumps are tiled (or cut) to N, without
                         the rocks
   --frames F            measured frames (default 120), after 5 warm-up frames
+  --camera-path FILE    measured frame i sees the camera path at i/30 s (warm-up: its start)
   --size WxH            image size (default 1280x720)
   --driver gpu|cpu      gpu (default): the compute passes animate, cull and pick LODs; cpu: the
                         CPU does (render/cpu_driver.h) and uploads the results every frame, and
@@ -81,6 +85,24 @@ std::vector<gpu::GpuInstance> tileField(const std::vector<gpu::GpuInstance>& fie
     return out;
 }
 
+// --camera-path FILE, loaded and checked before any work; it and --camera both set the camera.
+std::optional<CameraPath> cameraPathFromArgs(const ParsedArgs& args) {
+    std::optional<std::string> file = args.value("--camera-path");
+    if (!file)
+        return std::nullopt;
+    if (args.has("--camera"))
+        throw Error("meadow " + args.command + ": --camera and --camera-path both set the camera; give one");
+    return loadCameraPath(*file);
+}
+
+// `lens` (the scene's field of view and planes) at the path's pose `seconds` after its start.
+Camera cameraOnPath(Camera lens, const CameraPath& path, double seconds) {
+    const CameraPose pose = sampleCameraPath(path, path.startTime() + seconds);
+    lens.eye = pose.eye;
+    lens.target = pose.target;
+    return lens;
+}
+
 double percentile(std::vector<double> values, double p) {
     if (values.empty())
         return 0.0;
@@ -95,7 +117,10 @@ double percentile(std::vector<double> values, double p) {
 int runRender(const Args& argv) {
     if (printHelpIfAsked(argv, kRenderHelp))
         return 0;
-    CommandSpec spec{"render", {"SCENE"}, {"--out", "--frames", "--size", "--time-of-day", "--camera", "--wind"}, {}};
+    CommandSpec spec{"render",
+                     {"SCENE"},
+                     {"--out", "--frames", "--size", "--time-of-day", "--camera", "--camera-path", "--wind"},
+                     {}};
     spec.switchOptions.insert("--debug-lod");
     addSceneOptions(spec);
     addEngineOptions(spec);
@@ -107,7 +132,9 @@ int runRender(const Args& argv) {
     std::filesystem::path out = *args.value("--out");
     ImageFileKind kind = imageKindForPath(out);
     checkOutputWritable(out);
-    uint32_t frames = args.u32("--frames", 1, 1, 100000);
+    const std::optional<CameraPath> path = cameraPathFromArgs(args);
+    const uint32_t pathFrames = path ? uint32_t(std::floor(path->duration() * 30.0 + 1e-6)) + 1 : 1;
+    uint32_t frames = args.u32("--frames", pathFrames, 1, 100000);
     auto [width, height] = args.size("--size", {1280, 720});
     Scene scene = sceneFromArgs(args);
     float timeOfDay = args.f32("--time-of-day", scene.timeOfDay, 0.0f, 24.0f);
@@ -126,7 +153,7 @@ int runRender(const Args& argv) {
                                                      fieldScenery(library));
         Offscreen offscreen = createOffscreen(ctx, {width, height});
         FrameState state;
-        state.camera = camera;
+        state.camera = path ? cameraOnPath(camera, *path, 0.0) : camera;
         state.width = width;
         state.height = height;
         state.hours = timeOfDay;
@@ -137,6 +164,8 @@ int runRender(const Args& argv) {
         advanceMotion(ctx, renderer, state);
         for (uint32_t i = 0; i < frames; ++i) {
             state.seconds = warmUp + double(i) / 30.0 + 1e-6;
+            if (path)
+                state.camera = cameraOnPath(camera, *path, double(i) / 30.0);
             renderOffscreenFrame(ctx, renderer, offscreen, state);
             std::filesystem::path path = framePath(out, i, frames);
             if (kind == ImageFileKind::Png)
@@ -159,7 +188,7 @@ int runRender(const Args& argv) {
 int runBench(const Args& argv) {
     if (printHelpIfAsked(argv, kBenchHelp))
         return 0;
-    CommandSpec spec{"bench", {"SCENE"}, {"--json", "--clumps", "--frames", "--size", "--driver"}, {}};
+    CommandSpec spec{"bench", {"SCENE"}, {"--json", "--clumps", "--frames", "--size", "--driver", "--camera-path"}, {}};
     addSceneOptions(spec);
     addEngineOptions(spec);
     ParsedArgs args = parseArgs(spec, argv);
@@ -172,6 +201,7 @@ int runBench(const Args& argv) {
         throw Error("meadow bench: --driver '" + driver + "' is not gpu or cpu");
     uint32_t frames = args.u32("--frames", 120, 1, 1000000);
     auto [width, height] = args.size("--size", {1280, 720});
+    const std::optional<CameraPath> path = cameraPathFromArgs(args);
     Scene scene = sceneFromArgs(args);
     Library library = ensureLibrary(scene);
     // The field with its rocks; --clumps tiles the clumps alone (the rocks are left out).
@@ -196,16 +226,21 @@ int runBench(const Args& argv) {
         state.width = width;
         state.height = height;
         uint64_t uploadMin = UINT64_MAX, uploadMax = 0;
-        std::vector<double> frameMs, cpuMs;
+        uint32_t lightRuns = 0;
+        std::vector<double> frameMs, cpuMs, lightMs;
         std::map<std::string, std::vector<double>> passMs;
         const uint32_t warmup = 5;
         for (uint32_t i = 0; i < warmup + frames; ++i) {
-            // A moving day: the sky advances a minute per frame, so the light pass runs every frame.
+            // A moving day, a minute of daylight per second (a day in 24 minutes): the light pass
+            // runs every few frames.
             state.seconds = double(i) / 30.0 + 1e-6;
-            state.hours = scene.timeOfDay + double(i) / 60.0;
+            state.hours = scene.timeOfDay + state.seconds / 60.0;
+            if (path)
+                state.camera = cameraOnPath(camera, *path, double(i < warmup ? 0 : i - warmup) / 30.0);
             FrameTimings t = renderOffscreenFrame(ctx, renderer, offscreen, state);
             if (i < warmup)
                 continue;
+            lightRuns += renderer.lightThisFrame ? 1 : 0;
             uploadMin = std::min(uploadMin, renderer.uploadBytesLastFrame);
             uploadMax = std::max(uploadMax, renderer.uploadBytesLastFrame);
             frameMs.push_back(t.wallMs);
@@ -214,6 +249,8 @@ int runBench(const Args& argv) {
             for (const PassTime& p : t.gpu) {
                 passMs[p.label].push_back(p.milliseconds);
                 total += p.milliseconds;
+                if (p.label == "light" && renderer.lightThisFrame)
+                    lightMs.push_back(p.milliseconds);
             }
             passMs["total"].push_back(total);
         }
@@ -224,6 +261,8 @@ int runBench(const Args& argv) {
         for (auto& [label, values] : passMs)
             gpuMs[label] = percentile(values, 0.5);
         j["gpuMs"] = gpuMs;
+        // The light pass runs when the sky has moved enough (FieldRenderer::lightThisFrame).
+        j["lightPass"] = {{"framesRun", lightRuns}, {"msWhenRun", percentile(lightMs, 0.5)}};
         // Recording and submitting, plus (CPU-driven) stepping, culling and filling the uploads.
         j["cpuMsPerFrame"] = percentile(cpuMs, 0.5);
         // The uniform block and the push constants recorded into each frame (FieldRenderer), plus
@@ -250,6 +289,8 @@ int runBench(const Args& argv) {
     j["width"] = width;
     j["height"] = height;
     j["frames"] = frames;
+    if (path)
+        j["cameraPath"] = *args.value("--camera-path");
     j["instanceRecordBytes"] =
         sizeof(gpu::GpuInstance) + sizeof(gpu::GpuMotionState) + sizeof(float); // + LOD coordinate
     if (driver == "cpu") {

@@ -2,6 +2,7 @@
 
 #include "vk/barriers.h"
 #include "vk/context.h"
+#include "vk/memory.h"
 #include "vk/vk_check.h"
 
 #define GLFW_INCLUDE_VULKAN
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 
 namespace meadow {
 namespace {
@@ -24,6 +26,20 @@ void destroySwapchainResources(Context& ctx, Window& w) {
         vkDestroySemaphore(ctx.device, s, nullptr);
     w.presentReady.clear();
     w.images.clear();
+    if (w.composite.image)
+        destroyImage(ctx, w.composite);
+    w.compositeHasFrame = false;
+}
+
+void requireCompositeFormat(Context& ctx) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice, kCompositeFormat, &props);
+    const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT |
+                                        VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_BLIT_SRC_BIT |
+                                        VK_FORMAT_FEATURE_TRANSFER_SRC_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+    if ((props.optimalTilingFeatures & needed) != needed)
+        throw Error("the Vulkan device " + ctx.deviceName() +
+                    " cannot blend into, copy and blit R8G8B8A8_UNORM images as the window needs");
 }
 
 } // namespace
@@ -140,10 +156,14 @@ bool recreateSwapchain(Context& ctx, Window& w) {
     std::vector<VkPresentModeKHR> modes(modeCount);
     VK_CHECK(vkGetPhysicalDeviceSurfacePresentModesKHR(ctx.physicalDevice, w.surface, &modeCount, modes.data()));
     VkPresentModeKHR mode = VK_PRESENT_MODE_FIFO_KHR; // always supported
-    if (!w.vsync)
-        for (VkPresentModeKHR m : modes)
-            if (m == VK_PRESENT_MODE_IMMEDIATE_KHR || m == VK_PRESENT_MODE_MAILBOX_KHR)
-                mode = m;
+    if (!w.vsync) {
+        // Without vsync: tearing allowed (IMMEDIATE) first, else the newest frame wins (MAILBOX).
+        auto has = [&](VkPresentModeKHR m) { return std::find(modes.begin(), modes.end(), m) != modes.end(); };
+        if (has(VK_PRESENT_MODE_IMMEDIATE_KHR))
+            mode = VK_PRESENT_MODE_IMMEDIATE_KHR;
+        else if (has(VK_PRESENT_MODE_MAILBOX_KHR))
+            mode = VK_PRESENT_MODE_MAILBOX_KHR;
+    }
 
     uint32_t imageCount = std::max(caps.minImageCount + 1, 2u);
     if (caps.maxImageCount > 0)
@@ -177,6 +197,11 @@ bool recreateSwapchain(Context& ctx, Window& w) {
     w.swapchain = swapchain;
     w.format = chosen.format;
     w.extent = extent;
+    w.presentMode = mode;
+    requireCompositeFormat(ctx);
+    w.composite = createImage2D(ctx, extent, kCompositeFormat,
+                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                    VK_IMAGE_USAGE_TRANSFER_DST_BIT);
 
     uint32_t count = 0;
     VK_CHECK(vkGetSwapchainImagesKHR(ctx.device, w.swapchain, &count, nullptr));
@@ -187,6 +212,7 @@ bool recreateSwapchain(Context& ctx, Window& w) {
     for (VkSemaphore& s : w.presentReady)
         VK_CHECK(vkCreateSemaphore(ctx.device, &semInfo, nullptr, &s));
     ++w.swapchainGeneration;
+    w.recreateNeeded = false;
     return true;
 }
 
@@ -201,25 +227,112 @@ bool acquireImage(Context& ctx, Window& w, uint32_t& imageIndex) {
     return true;
 }
 
-void recordBlitToSwapchain(VkCommandBuffer cmd, const Window& w, uint32_t imageIndex, const RenderTargets& t) {
-    VkImage target = w.images[imageIndex];
+void recordFrameToComposite(VkCommandBuffer cmd, Window& w, const RenderTargets& t) {
     imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL,
+                 access::kTransferRead, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    // The previous frame's blit (and a screenshot) read the composite; its contents are replaced.
+    imageBarrier(cmd, w.composite.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kTransferRead, VK_IMAGE_LAYOUT_UNDEFINED,
+                 access::kTransferWrite, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    if (t.extent.width == w.extent.width && t.extent.height == w.extent.height) {
+        VkImageCopy copy{};
+        copy.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.extent = {w.extent.width, w.extent.height, 1};
+        vkCmdCopyImage(cmd, t.ldr.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, w.composite.image,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    } else {
+        VkImageBlit blit{};
+        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.srcOffsets[1] = {int32_t(t.extent.width), int32_t(t.extent.height), 1};
+        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.dstOffsets[1] = {int32_t(w.extent.width), int32_t(w.extent.height), 1};
+        vkCmdBlitImage(cmd, t.ldr.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, w.composite.image,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+    }
+    imageBarrier(cmd, w.composite.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kTransferWrite,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, access::kColorAttachmentWrite,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    // Back to GENERAL so the next frame's tonemap finds it where it expects.
+    imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kTransferRead,
+                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, access::kComputeReadWrite, VK_IMAGE_LAYOUT_GENERAL);
+}
+
+void recordCompositeToSwapchain(VkCommandBuffer cmd, Window& w, uint32_t imageIndex, Access writtenBy) {
+    VkImage target = w.images[imageIndex];
+    imageBarrier(cmd, w.composite.image, VK_IMAGE_ASPECT_COLOR_BIT, writtenBy, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                  access::kTransferRead, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     // The acquire semaphore's wait covers the transfer stage; the layout change waits on it.
     imageBarrier(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_NONE},
                  VK_IMAGE_LAYOUT_UNDEFINED, access::kTransferWrite, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    // Same size; a blit because the swapchain's format may be BGRA.
     VkImageBlit blit{};
     blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {int32_t(t.extent.width), int32_t(t.extent.height), 1};
+    blit.srcOffsets[1] = {int32_t(w.composite.extent.width), int32_t(w.composite.extent.height), 1};
     blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.dstOffsets[1] = {int32_t(w.extent.width), int32_t(w.extent.height), 1};
-    vkCmdBlitImage(cmd, t.ldr.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   1, &blit, VK_FILTER_LINEAR);
+    vkCmdBlitImage(cmd, w.composite.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
     imageBarrier(cmd, target, VK_IMAGE_ASPECT_COLOR_BIT, access::kTransferWrite, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                  access::kNone, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
-    // Back to GENERAL so the next frame's tonemap (and a screenshot) find it where they expect.
-    imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kTransferRead,
-                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, access::kComputeReadWrite, VK_IMAGE_LAYOUT_GENERAL);
+    w.compositeHasFrame = true;
+}
+
+std::vector<uint8_t> readCompositePixels(Context& ctx, const Window& w) {
+    if (!w.compositeHasFrame)
+        throw Error("the window has not shown a frame since it was last resized; no screenshot");
+    const VkExtent2D e = w.composite.extent;
+    const VkDeviceSize size = VkDeviceSize(e.width) * e.height * 4;
+    Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+    submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+        // The frame's blit read it in this layout; another read needs only the execution order.
+        barrier(cmd, access::kTransferRead, access::kTransferRead);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {e.width, e.height, 1};
+        vkCmdCopyImageToBuffer(cmd, w.composite.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1,
+                               &region);
+        barrier(cmd, access::kTransferWrite, access::kHostRead);
+    });
+    std::vector<uint8_t> pixels(size);
+    std::memcpy(pixels.data(), staging.mapped(), size);
+    destroyBuffer(ctx, staging);
+    return pixels;
+}
+
+void setFullscreen(Window& w, bool fullscreen) {
+    if (fullscreen == w.fullscreen)
+        return;
+    if (fullscreen) {
+        GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+        const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr;
+        if (!mode) {
+            std::fprintf(stderr, "meadow: no monitor to go fullscreen on (%s)\n", glfwErrorText().c_str());
+            return;
+        }
+        glfwGetWindowPos(w.window, &w.windowedX, &w.windowedY);
+        glfwGetWindowSize(w.window, &w.windowedWidth, &w.windowedHeight);
+        glfwSetWindowMonitor(w.window, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+    } else {
+        glfwSetWindowMonitor(w.window, nullptr, w.windowedX, w.windowedY, w.windowedWidth, w.windowedHeight,
+                             GLFW_DONT_CARE);
+    }
+    w.fullscreen = fullscreen;
+}
+
+void setVsync(Context& ctx, Window& w, bool vsync) {
+    w.vsync = vsync;
+    // While minimised there is no swapchain to make: the first frame after restoring makes it.
+    w.recreateNeeded = !recreateSwapchain(ctx, w);
+}
+
+const char* presentModeName(VkPresentModeKHR mode) {
+    switch (mode) {
+    case VK_PRESENT_MODE_IMMEDIATE_KHR: return "IMMEDIATE";
+    case VK_PRESENT_MODE_MAILBOX_KHR: return "MAILBOX";
+    case VK_PRESENT_MODE_FIFO_KHR: return "FIFO";
+    case VK_PRESENT_MODE_FIFO_RELAXED_KHR: return "FIFO_RELAXED";
+    default: return "other";
+    }
 }
 
 bool submitAndPresent(Context& ctx, Window& w, uint32_t imageIndex) {

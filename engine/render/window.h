@@ -1,9 +1,12 @@
-// The window target: a GLFW window with a Vulkan swapchain that survives resize and minimise.
-// Frames are rendered into RenderTargets and the tonemapped image is blitted to the swapchain
-// image, so the window shows exactly what offscreen rendering writes to PNG.
+// The window target: a GLFW window with a Vulkan swapchain that survives resize, minimise,
+// fullscreen and a change of present mode. Frames are rendered into RenderTargets; the tonemapped
+// image is copied into the window's composite image (what offscreen rendering writes to PNG),
+// overlays such as the HUD draw onto the composite, and the composite is blitted to the swapchain
+// image. A screenshot reads the composite: exactly what the window shows.
 #pragma once
 
 #include "render/render_targets.h"
+#include "vk/barriers.h"
 
 #include <string>
 #include <vector>
@@ -35,7 +38,18 @@ struct Window {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     VkFence frameFence = VK_NULL_HANDLE;
     uint32_t swapchainGeneration = 0; // bumps on each recreation
+    VkPresentModeKHR presentMode = VK_PRESENT_MODE_FIFO_KHR;
+    bool recreateNeeded = false; // a setting changed while the swapchain could not be remade
+
+    // kCompositeFormat at the swapchain's extent; after a frame it is in TRANSFER_SRC_OPTIMAL.
+    Image composite;
+    bool compositeHasFrame = false; // false until a frame was recorded into this composite
+
+    bool fullscreen = false;
+    int windowedX = 0, windowedY = 0, windowedWidth = 0, windowedHeight = 0; // to come back to
 };
+
+inline constexpr VkFormat kCompositeFormat = VK_FORMAT_R8G8B8A8_UNORM; // as RenderTargets::ldr
 
 Window createWindow(Context& context, const std::string& title, uint32_t width, uint32_t height);
 void destroyWindow(Context& context, Window& window);
@@ -49,10 +63,27 @@ bool recreateSwapchain(Context& context, Window& window);
 // Acquires the next image; returns false if the swapchain had to be recreated (skip the frame).
 bool acquireImage(Context& context, Window& window, uint32_t& imageIndex);
 
-// Records the blit of `targets.ldr` (GENERAL, written by the tonemap pass) to swapchain image
-// `imageIndex`, scaled to fit, and its transition for presentation.
-void recordBlitToSwapchain(VkCommandBuffer cmd, const Window& window, uint32_t imageIndex,
-                           const RenderTargets& targets);
+// Records the copy of `targets.ldr` (GENERAL, written by the tonemap pass) into the composite,
+// and leaves the composite in COLOR_ATTACHMENT_OPTIMAL for overlays (and ldr back in GENERAL).
+void recordFrameToComposite(VkCommandBuffer cmd, Window& window, const RenderTargets& targets);
+
+// Records the blit of the composite (COLOR_ATTACHMENT_OPTIMAL, last written as `writtenBy`) to
+// swapchain image `imageIndex` and its transition for presentation; the composite ends in
+// TRANSFER_SRC_OPTIMAL.
+void recordCompositeToSwapchain(VkCommandBuffer cmd, Window& window, uint32_t imageIndex, Access writtenBy);
+
+// The composite's pixels (8-bit RGBA, sRGB-encoded), after the frame's commands completed and
+// before the next frame is recorded. Records and waits on its own command buffer.
+std::vector<uint8_t> readCompositePixels(Context& context, const Window& window);
+
+// Fullscreen on the primary monitor at its current mode, or back to the window as it was. The
+// framebuffer changes size: the next frame recreates the swapchain.
+void setFullscreen(Window& window, bool fullscreen);
+
+// Vsync on: FIFO (always supported). Off: IMMEDIATE, else MAILBOX, else FIFO (say so). Recreates
+// the swapchain (waits for the device).
+void setVsync(Context& context, Window& window, bool vsync);
+const char* presentModeName(VkPresentModeKHR mode);
 
 // Submits the window's command buffer (waiting on the acquire) and presents. Returns false when
 // the swapchain is out of date and was recreated.

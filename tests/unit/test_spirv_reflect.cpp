@@ -13,9 +13,10 @@ TEST(SpirvReflect, CullPassLayout) {
     EXPECT_EQ(r.stage, VK_SHADER_STAGE_COMPUTE_BIT);
     EXPECT_EQ(r.localSize[0], gpu::kCullGroupSize);
     EXPECT_EQ(r.localSize[1], 1u);
-    ASSERT_EQ(r.bindings.size(), 6u);
+    // Frame; instances, draws, visible list, statistics, LOD state, clumps, motion states, draw records.
+    ASSERT_EQ(r.bindings.size(), 9u);
     EXPECT_EQ(r.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-    for (uint32_t b = 1; b <= 5; ++b)
+    for (uint32_t b = 1; b <= 8; ++b)
         EXPECT_EQ(r.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
     EXPECT_FALSE(r.usesPushConstants);
 }
