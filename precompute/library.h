@@ -70,4 +70,9 @@ std::filesystem::path cachedLibraryPath(const Scene& scene);
 // The cached library of `scene`, built first if missing, stale or corrupt (never trusted).
 Library ensureLibrary(const Scene& scene, bool quiet = false);
 
+// The cached library of `scene` as it is: throws meadow::Error naming the path and the command that
+// builds it when there is none, or when it was built from other inputs. For programs that run
+// libraries but cannot build them (the bench runner); everything else calls ensureLibrary.
+Library loadCachedLibrary(const Scene& scene);
+
 } // namespace meadow

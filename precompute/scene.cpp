@@ -10,6 +10,41 @@ namespace {
 
 using nlohmann::json;
 
+// Deeper than any valid scene (which nests four levels): refused before anything recurses over it.
+constexpr size_t kMaxNesting = 64;
+constexpr size_t kMaxNameLength = 64; // the name goes into the library's file name
+
+// How deeply `doc` nests arrays and objects, counted without recursion.
+size_t nestingDepth(const json& doc) {
+    size_t deepest = 0;
+    std::vector<std::pair<const json*, size_t>> pending{{&doc, 1}};
+    while (!pending.empty()) {
+        auto [value, depth] = pending.back();
+        pending.pop_back();
+        if (!value->is_structured())
+            continue;
+        deepest = std::max(deepest, depth);
+        if (deepest > kMaxNesting)
+            break;
+        for (const json& child : *value)
+            pending.emplace_back(&child, depth + 1);
+    }
+    return deepest;
+}
+
+// A value as quoted in a message: scalars as JSON (long strings cut short), arrays and objects by
+// their size, so that a huge or deeply nested value cannot flood the message.
+std::string describe(const json& v) {
+    if (v.is_array())
+        return "an array of " + std::to_string(v.size());
+    if (v.is_object())
+        return "an object of " + std::to_string(v.size()) + " keys";
+    std::string text = v.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (text.size() > 40)
+        text = text.substr(0, 40) + "...";
+    return text;
+}
+
 class Checker {
   public:
     explicit Checker(std::string file) : file_(std::move(file)) {}
@@ -35,26 +70,26 @@ class Checker {
 
     float number(const json& v, const std::string& key, float lo, float hi) const {
         if (!v.is_number())
-            fail(key, "must be a number (got " + v.dump() + ")");
+            fail(key, "must be a number (got " + describe(v) + ")");
         double d = v.get<double>();
         if (!(d >= lo && d <= hi))
-            fail(key, "must be between " + fmt(lo) + " and " + fmt(hi) + " (got " + v.dump() + ")");
+            fail(key, "must be between " + fmt(lo) + " and " + fmt(hi) + " (got " + describe(v) + ")");
         return static_cast<float>(d);
     }
 
     uint32_t count(const json& v, const std::string& key, uint32_t lo, uint32_t hi) const {
         if (!v.is_number_integer())
-            fail(key, "must be an integer (got " + v.dump() + ")");
+            fail(key, "must be an integer (got " + describe(v) + ")");
         int64_t i = v.get<int64_t>();
         if (i < lo || i > hi)
             fail(key,
-                 "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " + v.dump() + ")");
+                 "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " + describe(v) + ")");
         return static_cast<uint32_t>(i);
     }
 
     glm::vec3 vec3(const json& v, const std::string& key) const {
         if (!v.is_array() || v.size() != 3)
-            fail(key, "must be an array of three numbers (got " + v.dump() + ")");
+            fail(key, "must be an array of three numbers (got " + describe(v) + ")");
         return {number(v[0], key + "[0]", -1e6f, 1e6f), number(v[1], key + "[1]", -1e6f, 1e6f),
                 number(v[2], key + "[2]", -1e6f, 1e6f)};
     }
@@ -77,15 +112,25 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     if (!knownPreset)
         throw Error("unknown preset '" + preset + "' (use ci or full)");
 
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error("scene " + path.string() + ": is a folder, not a scene file");
     std::ifstream in(path);
     if (!in)
         throw Error("scene " + path.string() + ": cannot open");
     json doc;
     try {
         doc = json::parse(in);
-    } catch (const json::parse_error& e) {
-        throw Error("scene " + path.string() + ": invalid JSON: " + e.what());
+    } catch (const json::exception& e) { // parse errors, and numbers too large for a double
+        // The parser quotes what it last read, which may be bytes that are not text.
+        std::string what = e.what();
+        for (char& c : what)
+            if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f)
+                c = '?';
+        throw Error("scene " + path.string() + ": invalid JSON: " + what);
     }
+    if (nestingDepth(doc) > kMaxNesting)
+        check.fail("the top level", "nests arrays and objects more than " + std::to_string(kMaxNesting) + " deep");
     check.onlyKeys(doc, "",
                    {"name", "description", "seed", "presets", "field", "camera", "timeOfDay", "plants", "wind",
                     "motion", "sky", "light", "lod"});
@@ -112,6 +157,9 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     if (!name.is_string() || name.get<std::string>().empty())
         check.fail("name", "must be a non-empty string");
     scene.name = name.get<std::string>();
+    if (scene.name.size() > kMaxNameLength)
+        check.fail("name", "must be at most " + std::to_string(kMaxNameLength) + " characters long (got " +
+                               std::to_string(scene.name.size()) + ")");
     for (char c : scene.name)
         if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'))
             check.fail("name", "may hold only letters, digits, '-' and '_' (got \"" + scene.name + "\")");
@@ -123,7 +171,7 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     } else {
         const json& s = check.require(resolved, "", "seed");
         if (!s.is_number_unsigned())
-            check.fail("seed", "must be a non-negative integer (got " + s.dump() + ")");
+            check.fail("seed", "must be a non-negative integer (got " + describe(s) + ")");
         scene.seed = s.get<uint64_t>();
     }
     resolved["seed"] = scene.seed;
@@ -169,7 +217,7 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
         check.onlyKeys(plants, "plants", {"source", "clumps", "gltf"});
         const json& source = plants.value("source", json("iris"));
         if (!source.is_string() || (source != "iris" && source != "gltf"))
-            check.fail("plants.source", "must be \"iris\" or \"gltf\" (got " + source.dump() + ")");
+            check.fail("plants.source", "must be \"iris\" or \"gltf\" (got " + describe(source) + ")");
         scene.plants.source = source.get<std::string>();
         scene.plants.clumps = check.count(plants.value("clumps", json(4)), "plants.clumps", 1, 16);
         if (scene.plants.source == "gltf") {

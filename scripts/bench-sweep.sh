@@ -2,9 +2,12 @@
 # Sweeps `meadow bench` over field sizes (the default scene's clumps tiled, DESIGN.md 4) and
 # writes a table (Markdown) and a plot (PNG) of frame time and per-pass GPU time against clump
 # count, plus every run's JSON.
-#   scripts/bench-sweep.sh [--meadow BIN] [--size WxH] [--frames F] [--out DIR] [--preset P] [COUNTS...]
+#   scripts/bench-sweep.sh [--meadow BIN | --bench CMD] [--scene SCENE] [--size WxH] [--frames F]
+#                          [--out DIR] [--preset P] [COUNTS...]
 # Defaults: the Release build (scripts/build.sh), 1280x720, 30 frames, bench-sweep/ in the
-# current folder, the full preset, counts 10000 30000 100000 300000 1000000.
+# current folder, the full preset, data/scenes/irises.json, counts 10000 30000 100000 300000 1000000.
+# --bench CMD runs CMD SCENE [bench options] instead of `meadow bench`: the bench runner of a
+# bundle (scripts/bundle-bench.sh) sweeps with it on a machine without meadow's build.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 meadow="$root/build/engine/meadow"
@@ -12,35 +15,44 @@ size=1280x720
 frames=30
 out="$PWD/bench-sweep"
 preset=full
+scene="$root/data/scenes/irises.json"
+bench=()
+bundled=""
 counts=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --meadow) meadow="$2"; shift 2 ;;
+    --bench) bench=("$2"); bundled=1; shift 2 ;;
+    --scene) scene="$2"; shift 2 ;;
     --size) size="$2"; shift 2 ;;
     --frames) frames="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
     --preset) preset="$2"; shift 2 ;;
-    -h|--help) sed -n '2,7p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
     -*) echo "bench-sweep: unknown option $1" >&2; exit 2 ;;
     *) counts+=("$1"); shift ;;
   esac
 done
 [ ${#counts[@]} -gt 0 ] || counts=(10000 30000 100000 300000 1000000)
-if [ ! -x "$meadow" ]; then
-  bash "$root/scripts/build.sh" "$root/build" -DCMAKE_BUILD_TYPE=Release
+if [ ${#bench[@]} -eq 0 ]; then
+  if [ ! -x "$meadow" ]; then
+    bash "$root/scripts/build.sh" "$root/build" -DCMAKE_BUILD_TYPE=Release
+  fi
+  bench=("$meadow" bench)
 fi
 # The plot needs matplotlib (Debian: python3-matplotlib, for the system's python3); the table
 # does not.
 py=python3
 [ -x /usr/bin/python3 ] && py=/usr/bin/python3
-if ! "$py" -c "import matplotlib" 2>/dev/null && command -v apt-get >/dev/null && [ "$(id -u)" = 0 ]; then
+# With --bench (a bundle on another machine) nothing is installed: the table comes regardless.
+if [ -z "$bundled" ] && ! "$py" -c "import matplotlib" 2>/dev/null && command -v apt-get >/dev/null &&
+   [ "$(id -u)" = 0 ]; then
   apt-get install -y -qq python3-matplotlib >/dev/null || true
 fi
 mkdir -p "$out"
-scene="$root/data/scenes/irises.json"
 for n in "${counts[@]}"; do
   echo "bench-sweep: $n clumps at $size, $frames frames" >&2
-  "$meadow" bench "$scene" --preset "$preset" --clumps "$n" --frames "$frames" --size "$size" \
+  "${bench[@]}" "$scene" --preset "$preset" --clumps "$n" --frames "$frames" --size "$size" \
     --json "$out/bench-$n.json" > /dev/null
 done
 

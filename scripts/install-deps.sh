@@ -16,6 +16,8 @@ packages=(
   libembree-dev libmeshoptimizer-dev
   # tests: GoogleTest, an X server and a window manager (so minimising is real) for window tests
   libgtest-dev xvfb xauth openbox python3
+  # micro-benchmarks of the precompute's hot paths (precompute/benchmarks, scripts/microbench.sh)
+  libbenchmark-dev
   # robustness: clang with libFuzzer and its sanitizer runtimes (scripts/fuzz.sh)
   clang libclang-rt-14-dev
 )

@@ -46,20 +46,18 @@ void main() {
     // x̄ + U q, q blended across a graph jump (motion_step.h): the old path's weight fades from 1.
     // (Vertex shading is lavapipe's single-threaded stage: loads are what it pays for, so the old
     // path's coordinates are read only while a blend runs.)
-    uint q0 = inst.offsets.x + v.motion.y;
+    // One loop, the blend inside it: two loops in the branches of an if made lavapipe (Mesa 22.3,
+    // LLVM 15) at 128-bit vectors on an AVX-512 CPU write past its vertex buffers (heap corruption
+    // in every render; found with Electric Fence).
+    uint q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
+    bool blending = inst.pose.z > 0.0;
     vec3 d = vec3(0.0);
-    if (inst.pose.z > 0.0) {
-        uint q1 = inst.offsets.y + v.motion.y;
-        for (uint k = 0u; k < rank; ++k) {
-            uint row = v.motion.x + 3u * k;
-            float q = mix(motionData[q0 + k], motionData[q1 + k], inst.pose.z);
-            d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * q;
-        }
-    } else {
-        for (uint k = 0u; k < rank; ++k) {
-            uint row = v.motion.x + 3u * k;
-            d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * motionData[q0 + k];
-        }
+    for (uint k = 0u; k < rank; ++k) {
+        uint row = v.motion.x + 3u * k;
+        float q = motionData[q0 + k];
+        if (blending)
+            q = mix(q, motionData[q1 + k], inst.pose.z);
+        d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * q;
     }
 
     // Irradiance of both sides to first order in d, for this instance's light variant (its yaw

@@ -1,4 +1,5 @@
 #include "app/args.h"
+#include "app/commands.h"
 
 #include "core/error.h"
 
@@ -152,6 +153,15 @@ ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& ar
     if (parsed.positionals.size() > spec.positionals.size())
         throw Error(where + "unexpected argument '" + parsed.positionals[spec.positionals.size()] + "'");
     return parsed;
+}
+
+bool printHelpIfAsked(const Args& args, const char* text) {
+    for (const std::string& a : args)
+        if (a == "--help" || a == "-h") {
+            std::fputs(text, stdout);
+            return true;
+        }
+    return false;
 }
 
 } // namespace meadow

@@ -7,19 +7,6 @@
 #include <cstring>
 #include <exception>
 
-namespace meadow {
-
-bool printHelpIfAsked(const Args& args, const char* text) {
-    for (const std::string& a : args)
-        if (a == "--help" || a == "-h") {
-            std::fputs(text, stdout);
-            return true;
-        }
-    return false;
-}
-
-} // namespace meadow
-
 namespace {
 
 const char* kUsage = R"(usage: meadow <command> [arguments]

@@ -46,6 +46,15 @@ Camera cameraFromArgs(const ParsedArgs& args, const Scene& scene) {
     return camera;
 }
 
+std::optional<CameraPath> cameraPathFromArgs(const ParsedArgs& args) {
+    std::optional<std::string> file = args.value("--camera-path");
+    if (!file)
+        return std::nullopt;
+    if (args.has("--camera"))
+        throw Error("meadow " + args.command + ": --camera and --camera-path both set the camera; give one");
+    return loadCameraPath(*file);
+}
+
 int validationExitStatus(const Context& ctx) {
     if (!ctx.validationEnabled)
         return 0;

@@ -5,6 +5,7 @@
 #include "app/args.h"
 #include "library.h"
 #include "render/camera.h"
+#include "render/camera_path.h"
 #include "render/field_content.h"
 #include "scene.h"
 #include "vk/context.h"
@@ -21,6 +22,10 @@ ContextOptions contextOptionsFromArgs(const ParsedArgs& args);
 
 // The scene's camera, overridden by --camera EX,EY,EZ,TX,TY,TZ.
 Camera cameraFromArgs(const ParsedArgs& args, const Scene& scene);
+
+// --camera-path FILE, loaded and checked before any work (none without the option); it and
+// --camera both set the camera, so giving both is an error.
+std::optional<CameraPath> cameraPathFromArgs(const ParsedArgs& args);
 
 // Prints the validation summary when validation ran; returns the exit status to use: 0, or 3
 // when the layer reported anything.

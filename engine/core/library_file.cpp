@@ -145,6 +145,8 @@ void ByteReader::bytes(void* out, size_t size) {
     if (size > remaining())
         throw Error(context_ + ": truncated (needs " + std::to_string(size) + " more bytes at offset " +
                     std::to_string(at_) + ")");
+    if (size == 0)
+        return; // `out` may be the null data() of an empty vector, which memcpy must not get
     std::memcpy(out, data_.data() + at_, size);
     at_ += size;
 }

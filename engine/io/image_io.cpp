@@ -66,19 +66,6 @@ ImageFileKind imageKindForPath(const std::filesystem::path& path) {
     throw Error("output " + path.string() + ": unsupported image type '" + ext + "' (use .png or .exr)");
 }
 
-void checkOutputWritable(const std::filesystem::path& path) {
-    std::filesystem::path dir = path.parent_path();
-    if (dir.empty())
-        dir = ".";
-    std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec))
-        throw Error("cannot write " + path.string() + ": folder " + dir.string() + " does not exist");
-    if (std::filesystem::is_directory(path, ec))
-        throw Error("cannot write " + path.string() + ": it is a folder");
-    if (access(dir.c_str(), W_OK) != 0)
-        throw Error("cannot write " + path.string() + ": folder " + dir.string() + " is not writable");
-}
-
 void writeRgba8(const std::filesystem::path& path, uint32_t width, uint32_t height, std::span<const uint8_t> pixels) {
     if (pixels.size() != size_t(width) * height * 4)
         throw Error("internal: wrong pixel count for " + path.string());

@@ -2,6 +2,8 @@
 // temporary file beside the target, which is renamed into place once complete.
 #pragma once
 
+#include "io/output_path.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -14,10 +16,6 @@ enum class ImageFileKind { Png, Exr };
 // The kind an output path asks for, by extension (.png or .exr, any case). Throws meadow::Error
 // naming the path for anything else.
 ImageFileKind imageKindForPath(const std::filesystem::path& path);
-
-// Throws meadow::Error, naming the path, when a file cannot be created there (missing or
-// unwritable folder). Checked before any rendering starts.
-void checkOutputWritable(const std::filesystem::path& path);
 
 void writeRgba8(const std::filesystem::path& path, uint32_t width, uint32_t height, std::span<const uint8_t> pixels);
 void writeRgbaHalf(const std::filesystem::path& path, uint32_t width, uint32_t height,

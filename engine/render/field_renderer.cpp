@@ -2,6 +2,7 @@
 
 #include "vk/barriers.h"
 #include "vk/context.h"
+#include "vk/memory_budget.h"
 #include "vk/timestamps.h"
 #include "vk/vk_check.h"
 
@@ -296,17 +297,33 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
     } else {
         r.groundRect = glm::vec4(0.0f, 0.0f, 0.0f, 0.0f); // nothing casts: every point reads the open-ground texel
     }
-    r.groundLight = createImage2D(ctx, mapSize, kGroundLightFormat,
-                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-
     uint32_t first = 0;
     for (uint32_t m = 0; m < r.meshCount; ++m) {
         draws[m].firstInstance = first;
         first += perClump[m / r.lodCount];
     }
+    const size_t skyStride = gpu::kSkyFrameHeaderFloats + size_t(day.imageWidth) * day.imageHeight * 3;
+
+    // Everything the field puts in device memory, checked against what the device has before the
+    // first allocation: a field too large fails here with the figures, not with a device lost later.
+    const uint64_t perInstanceBytes =
+        sizeof(gpu::GpuInstance) + sizeof(gpu::GpuMotionState) + sizeof(float) + sizeof(gpu::GpuDrawInstance);
+    const uint64_t neededBytes =
+        uint64_t(instances.size()) * perInstanceBytes + uint64_t(first) * sizeof(uint32_t) +
+        gpuClumps.size() * sizeof(gpu::GpuClump) + lodVertices.size() * sizeof(gpu::GpuLodVertex) +
+        indices.size() * sizeof(uint32_t) + (motionData.size() + transfer.size()) * sizeof(float) +
+        motionGraph.size() * sizeof(uint32_t) + lightVec4s * 16 + skyStride * day.frames.size() * sizeof(float) +
+        2 * draws.size() * sizeof(gpu::GpuDrawIndexedCommand) + uint64_t(atlas.width) * atlas.height * 4 +
+        uint64_t(mapSize.width) * mapSize.height * 8 + scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex) +
+        scenery.terrain.indices.size() * sizeof(uint32_t);
+    checkFieldMemory(ctx, neededBytes,
+                     "the field (" + std::to_string(instances.size()) + " instances of " +
+                         std::to_string(clumps.size()) + " meshes)");
+
+    r.groundLight = createImage2D(ctx, mapSize, kGroundLightFormat,
+                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
 
     // The sky day: per frame its SH, sun and backdrop (gpu::kSkyFrameHeaderFloats).
-    const size_t skyStride = gpu::kSkyFrameHeaderFloats + size_t(day.imageWidth) * day.imageHeight * 3;
     std::vector<float> skyData(skyStride * day.frames.size(), 0.0f);
     for (size_t f = 0; f < day.frames.size(); ++f) {
         const sky::SkyFrame& frame = day.frames[f];

@@ -4,7 +4,9 @@
 #include "vk/context.h"
 #include "vk/memory.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -61,6 +63,15 @@ DeviceMemoryFigures deviceMemoryFigures(VkPhysicalDevice physicalDevice, uint64_
         const auto usable = uint64_t(double(figures.heapBytes) * kUsableHeapFraction);
         figures.availableBytes = usable > bytesInUse ? usable - bytesInUse : 0;
     }
+    if (const char* limit = std::getenv("MEADOW_GPU_MEMORY_MIB"); limit && *limit) {
+        char* end = nullptr;
+        const unsigned long long mib = std::strtoull(limit, &end, 10);
+        if (*end != '\0' || mib == 0 || mib > (1ull << 40))
+            throw Error(std::string("MEADOW_GPU_MEMORY_MIB '") + limit + "' is not a positive number of MiB");
+        figures.limitBytes = uint64_t(mib) << 20;
+        const uint64_t left = figures.limitBytes > bytesInUse ? figures.limitBytes - bytesInUse : 0;
+        figures.availableBytes = std::min(figures.availableBytes, left);
+    }
     return figures;
 }
 
@@ -75,6 +86,8 @@ void checkMemoryFits(uint64_t neededBytes, const DeviceMemoryFigures& figures, c
                          (figures.fromBudget ? "available to meadow now (VK_EXT_memory_budget)"
                                              : "usable (" + std::to_string(int(kUsableHeapFraction * 100.0 + 0.5)) +
                                                    "% of the heap, less what meadow holds)");
+    if (figures.limitBytes != 0)
+        detail += ", MEADOW_GPU_MEMORY_MIB allowing " + formatMiB(figures.limitBytes);
     throw Error(what + " needs " + formatMiB(neededBytes) + " of GPU memory; the device has " +
                 formatMiB(figures.heapBytes) + " (" + figures.deviceName + ", heap " +
                 std::to_string(figures.heapIndex) + ", " + detail +

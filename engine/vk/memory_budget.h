@@ -10,6 +10,8 @@
 //   - otherwise kUsableHeapFraction of the heap's size, less what meadow's allocator already holds.
 // On lavapipe the heap is the machine's memory, so the check also stops a field that would drive
 // a CPU-only machine into swapping or the out-of-memory killer.
+// MEADOW_GPU_MEMORY_MIB=N caps what meadow counts on at N MiB: to share a GPU with other work, and
+// for tests of the check on any machine.
 #pragma once
 
 #include <cstdint>
@@ -28,10 +30,12 @@ struct DeviceMemoryFigures {
     uint64_t heapBytes = 0;      // the size of the heap
     uint64_t availableBytes = 0; // what meadow may still allocate from it
     bool fromBudget = false;     // availableBytes came from VK_EXT_memory_budget
+    uint64_t limitBytes = 0;     // MEADOW_GPU_MEMORY_MIB, 0 if unset; availableBytes is at most this
 };
 
 // The figures of the heap device-local buffers come from. `bytesInUse` is what meadow's allocator
-// already holds there (used only without a budget, which counts it already).
+// already holds there (used only without a budget, which counts it already). Throws meadow::Error
+// when MEADOW_GPU_MEMORY_MIB is set but not a positive whole number.
 DeviceMemoryFigures deviceMemoryFigures(VkPhysicalDevice physicalDevice, uint64_t bytesInUse);
 DeviceMemoryFigures deviceMemoryFigures(const Context& context);
 

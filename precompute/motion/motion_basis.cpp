@@ -9,7 +9,9 @@ namespace meadow {
 
 void MotionBasis::finish(const std::string& what) {
     auto fail = [&](const std::string& problem) { return Error(what + ": " + problem); };
-    uint32_t offset = 0;
+    // 64-bit sums: ranks come from files, and a sum that wrapped around could match lodModes while
+    // a block's coordinates lie past the end of each frame's.
+    uint64_t offset = 0;
     for (size_t b = 0; b < blocks.size(); ++b) {
         const MotionBlock& block = blocks[b];
         if (block.coordOffset != offset)
@@ -22,7 +24,7 @@ void MotionBasis::finish(const std::string& what) {
         offset += block.ranks[0];
     }
     for (uint32_t lod = 0; lod < kLodCount; ++lod) {
-        uint32_t sum = 0;
+        uint64_t sum = 0;
         for (const MotionBlock& block : blocks)
             sum += block.ranks[lod];
         if (sum != lodModes[lod])

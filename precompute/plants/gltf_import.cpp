@@ -20,7 +20,11 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
     return true;
 }
 
+// tinygltf's message without trailing blank space, and cut short: it may quote a whole data URI.
 std::string trimmed(std::string text) {
+    constexpr size_t kMaxMessage = 300;
+    if (text.size() > kMaxMessage)
+        text = text.substr(0, kMaxMessage) + "...";
     while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' '))
         text.pop_back();
     return text;
@@ -44,25 +48,38 @@ class Importer {
 
     [[noreturn]] void fail(const std::string& what) const { throw Error("glTF " + file_ + ": " + what); }
 
-    void walk(int nodeIndex, const glm::mat4& parent, uint32_t depth) {
-        if (nodeIndex < 0 || static_cast<size_t>(nodeIndex) >= model_.nodes.size())
-            fail("node " + std::to_string(nodeIndex) + " does not exist");
-        // The node graph must be a forest; a cycle would recurse forever.
-        if (depth > model_.nodes.size())
-            fail("the node hierarchy has a cycle");
-        const tinygltf::Node& node = model_.nodes[static_cast<size_t>(nodeIndex)];
-        if (node.skin >= 0)
-            fail("node '" + node.name + "' uses skinning, which meadow cannot use");
-        glm::mat4 world = parent * localTransform(node);
-        if (node.mesh >= 0) {
-            if (static_cast<size_t>(node.mesh) >= model_.meshes.size())
-                fail("node '" + node.name + "' names mesh " + std::to_string(node.mesh) + ", which does not exist");
-            const tinygltf::Mesh& mesh = model_.meshes[static_cast<size_t>(node.mesh)];
-            for (size_t p = 0; p < mesh.primitives.size(); ++p)
-                addPrimitive(mesh, p, world);
+    // Walks the node forest from `roots` depth first (children in order), with every node's world
+    // transform. Iterative, so a deep hierarchy cannot exhaust the stack; each node is visited at
+    // most once, so a cycle or a node shared by two parents (both invalid glTF) is refused instead
+    // of recursing forever or multiplying the walk.
+    void walk(const std::vector<int>& roots) {
+        std::vector<bool> visited(model_.nodes.size(), false);
+        std::vector<std::pair<int, glm::mat4>> pending;
+        for (auto root = roots.rbegin(); root != roots.rend(); ++root)
+            pending.emplace_back(*root, glm::mat4(1.0f));
+        while (!pending.empty()) {
+            const auto [nodeIndex, parent] = pending.back();
+            pending.pop_back();
+            if (nodeIndex < 0 || static_cast<size_t>(nodeIndex) >= model_.nodes.size())
+                fail("node " + std::to_string(nodeIndex) + " does not exist");
+            if (visited[static_cast<size_t>(nodeIndex)])
+                fail("node " + std::to_string(nodeIndex) +
+                     " is reached twice: the node hierarchy has a cycle or a shared node (glTF requires a forest)");
+            visited[static_cast<size_t>(nodeIndex)] = true;
+            const tinygltf::Node& node = model_.nodes[static_cast<size_t>(nodeIndex)];
+            if (node.skin >= 0)
+                fail("node '" + node.name + "' uses skinning, which meadow cannot use");
+            const glm::mat4 world = parent * localTransform(node);
+            if (node.mesh >= 0) {
+                if (static_cast<size_t>(node.mesh) >= model_.meshes.size())
+                    fail("node '" + node.name + "' names mesh " + std::to_string(node.mesh) + ", which does not exist");
+                const tinygltf::Mesh& mesh = model_.meshes[static_cast<size_t>(node.mesh)];
+                for (size_t p = 0; p < mesh.primitives.size(); ++p)
+                    addPrimitive(mesh, p, world);
+            }
+            for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
+                pending.emplace_back(*child, world);
         }
-        for (int child : node.children)
-            walk(child, world, depth + 1);
     }
 
     PlantMesh& mesh() { return mesh_; }
@@ -114,13 +131,22 @@ class Importer {
         int stride = accessor.ByteStride(bufferView);
         if (componentSize <= 0 || components <= 0 || stride <= 0)
             fail(what + " has an invalid component type or stride");
-        size_t elementSize = static_cast<size_t>(componentSize) * static_cast<size_t>(components);
-        size_t start = bufferView.byteOffset + accessor.byteOffset;
-        size_t end =
-            accessor.count == 0 ? start : start + static_cast<size_t>(stride) * (accessor.count - 1) + elementSize;
-        if (end > bufferView.byteOffset + bufferView.byteLength ||
-            bufferView.byteOffset + bufferView.byteLength > buffer.data.size())
-            fail(what + " reads past the end of its buffer");
+        // The view must lie in its buffer and the accessor's elements in its view; the counts and
+        // offsets come from the file, so every step is checked against overflow by comparing with
+        // what is left rather than adding.
+        const size_t elementSize = static_cast<size_t>(componentSize) * static_cast<size_t>(components);
+        const size_t bufferBytes = buffer.data.size();
+        if (bufferView.byteOffset > bufferBytes || bufferView.byteLength > bufferBytes - bufferView.byteOffset)
+            fail(what + " reads past the end of its buffer (its buffer view does not fit in the buffer)");
+        const size_t viewBytes = bufferView.byteLength;
+        if (accessor.byteOffset > viewBytes)
+            fail(what + " reads past the end of its buffer (its offset is outside its buffer view)");
+        const size_t left = viewBytes - accessor.byteOffset;
+        if (accessor.count > 0 &&
+            (elementSize > left || accessor.count - 1 > (left - elementSize) / static_cast<size_t>(stride)))
+            fail(what + " reads past the end of its buffer (" + std::to_string(accessor.count) +
+                 " elements do not fit in its buffer view)");
+        const size_t start = bufferView.byteOffset + accessor.byteOffset;
         return View{buffer.data.data() + start, static_cast<size_t>(stride), accessor.count, accessor.componentType,
                     accessor.normalized};
     }
@@ -221,7 +247,9 @@ class Importer {
                             component(normals, i, 2, what));
                 n = normalMatrix * n;
                 float length = glm::length(n);
-                mesh_.normals.push_back(length > 1e-12f ? n / length : glm::vec3(0.0f, 1.0f, 0.0f));
+                // A degenerate transform (a zero scale) has no normal matrix: such normals point up.
+                mesh_.normals.push_back(std::isfinite(length) && length > 1e-12f ? n / length
+                                                                                 : glm::vec3(0.0f, 1.0f, 0.0f));
             }
         }
         int uvAccessor = attribute("TEXCOORD_0");
@@ -270,7 +298,9 @@ PlantClump importGltfPlant(const std::filesystem::path& path) {
     std::string file = path.string();
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
-        throw Error("glTF " + file + ": cannot open (no such file)");
+        throw Error("glTF " + file +
+                    (std::filesystem::exists(path, ec) ? ": is not a regular file (a folder or a device?)"
+                                                       : ": cannot open (no such file)"));
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(skipImage, nullptr);
@@ -291,8 +321,7 @@ PlantClump importGltfPlant(const std::filesystem::path& path) {
     size_t sceneIndex = model.defaultScene >= 0 ? static_cast<size_t>(model.defaultScene) : 0;
     if (sceneIndex >= model.scenes.size())
         importer.fail("the default scene " + std::to_string(sceneIndex) + " does not exist");
-    for (int root : model.scenes[sceneIndex].nodes)
-        importer.walk(root, glm::mat4(1.0f), 0);
+    importer.walk(model.scenes[sceneIndex].nodes);
 
     PlantClump clump;
     clump.name = path.stem().string();

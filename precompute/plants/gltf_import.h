@@ -8,7 +8,9 @@
 //
 // What is refused, with a meadow::Error naming the file and the reason: parse errors, a scene
 // without meshes, skins ("uses skinning, which meadow cannot use"), other primitive modes,
-// sparse accessors, missing POSITION, out-of-range indices, and implausible sizes: the plant's
+// sparse accessors, missing POSITION, accessors that read outside their buffers (counts and
+// offsets checked without overflow), out-of-range indices, a node hierarchy that is not a forest
+// (a cycle or a node with two parents), and implausible sizes: the plant's
 // height must be 0.02–20 m (glTF is in metres; a millimetre asset reads as "wrong units? the plant
 // is 1500 m tall").
 //

@@ -33,6 +33,8 @@ EnvironmentMap loadEnvironmentMap(const std::filesystem::path& path) {
         fail(path, "no such file");
     if (std::filesystem::is_directory(path, ec))
         fail(path, "is a folder, not an image");
+    if (!std::filesystem::is_regular_file(path, ec))
+        fail(path, "is not a regular file (a device or a pipe?), not an image");
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) {
         std::string message = OIIO::geterror();
@@ -45,6 +47,12 @@ EnvironmentMap loadEnvironmentMap(const std::filesystem::path& path) {
     if (spec.width != 2 * spec.height)
         fail(path, std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                        " is not a 2:1 latitude-longitude panorama");
+    // 16K panoramas are the largest in common use; a header claiming more is refused before its
+    // pixels are allocated (a few bytes of header could otherwise ask for terabytes).
+    if (spec.width > int(kMaxEnvironmentMapWidth))
+        fail(path, std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                       " is larger than meadow reads (at most " + std::to_string(kMaxEnvironmentMapWidth) + " x " +
+                       std::to_string(kMaxEnvironmentMapWidth / 2) + ")");
     if (spec.nchannels < 3)
         fail(path, "has " + std::to_string(spec.nchannels) + " channel(s); an RGB panorama needs at least 3");
 

@@ -16,6 +16,8 @@
 
 namespace meadow::sky {
 
+inline constexpr uint32_t kMaxEnvironmentMapWidth = 16384; // pixels; the height is half
+
 struct EnvironmentMap {
     std::filesystem::path path;
     uint32_t width = 0, height = 0; // width = 2 height
@@ -24,8 +26,9 @@ struct EnvironmentMap {
 
 // Reads and checks a panorama. Throws meadow::Error "sky map PATH: PROBLEM" when the file is
 // missing, unreadable or not an image; when it is not 2:1 ("W x H is not a 2:1 latitude-longitude
-// panorama"); has fewer than 3 channels; or holds a non-finite or negative texel (the first one
-// is named, with its position and channel).
+// panorama"); is not a regular file; is wider than kMaxEnvironmentMapWidth; has fewer than 3
+// channels; or holds a non-finite or negative texel (the first one is named, with its position
+// and channel).
 EnvironmentMap loadEnvironmentMap(const std::filesystem::path& path);
 
 // Resamples a lat-long RGB image to another size: each output pixel is the solid-angle-weighted

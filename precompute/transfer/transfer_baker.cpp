@@ -40,20 +40,6 @@ std::vector<float> toFloat(std::span<const double> values) {
 
 } // namespace
 
-BakeSettings bakeSettingsForPreset(const std::string& preset) {
-    BakeSettings settings;
-    if (preset == "full")
-        return settings;
-    if (preset == "ci") {
-        settings.raysPerVertex = 128;
-        settings.bounces = 1;
-        settings.groundGridResolution = 12;
-        settings.groundRaysPerPoint = 128;
-        return settings;
-    }
-    throw Error("transfer bake: unknown preset '" + preset + "' (expected ci or full)");
-}
-
 void checkBakeSettings(const BakeSettings& s) {
     require(s.order >= 1 && s.order <= sh::kMaxOrder,
             "order " + std::to_string(s.order) + " is outside 1.." + std::to_string(sh::kMaxOrder));

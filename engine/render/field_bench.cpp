@@ -1,0 +1,150 @@
+#include "render/field_bench.h"
+
+#include "render/cpu_driver.h"
+#include "render/offscreen.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+namespace meadow {
+namespace {
+
+double percentile(std::vector<double> values, double p) {
+    if (values.empty())
+        return 0.0;
+    std::sort(values.begin(), values.end());
+    size_t index =
+        static_cast<size_t>(std::min<double>(values.size() - 1, std::floor(p * double(values.size() - 1) + 0.5)));
+    return values[index];
+}
+
+// One run of `options.frames` frames (after a warm-up) on either path; its figures as JSON.
+nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, const std::vector<gpu::GpuInstance>& field,
+                       const RgbaImage& atlas, const FieldScenery& scenery, const FieldBenchOptions& options,
+                       bool cpuDriven) {
+    nlohmann::json j;
+    FieldRenderer renderer = createFieldRenderer(ctx, clumps, field, atlas, scenery);
+    if (cpuDriven)
+        enableCpuDriver(ctx, renderer, clumps, field);
+    Offscreen offscreen = createOffscreen(ctx, {options.width, options.height});
+    FrameState state;
+    state.camera = options.camera;
+    state.width = options.width;
+    state.height = options.height;
+    uint64_t uploadMin = UINT64_MAX, uploadMax = 0;
+    uint32_t lightRuns = 0;
+    std::vector<double> frameMs, cpuMs, lightMs;
+    std::map<std::string, std::vector<double>> passMs;
+    for (uint32_t i = 0; i < kFieldBenchWarmUp + options.frames; ++i) {
+        // A moving day, a minute of daylight per second (a day in 24 minutes): the light pass
+        // runs every few frames.
+        state.seconds = double(i) / 30.0 + 1e-6;
+        state.hours = options.timeOfDay + state.seconds / 60.0;
+        if (options.path)
+            state.camera = cameraOnPath(options.camera, *options.path,
+                                        double(i < kFieldBenchWarmUp ? 0 : i - kFieldBenchWarmUp) / 30.0);
+        FrameTimings t = renderOffscreenFrame(ctx, renderer, offscreen, state);
+        if (i < kFieldBenchWarmUp)
+            continue;
+        lightRuns += renderer.lightThisFrame ? 1 : 0;
+        uploadMin = std::min(uploadMin, renderer.uploadBytesLastFrame);
+        uploadMax = std::max(uploadMax, renderer.uploadBytesLastFrame);
+        frameMs.push_back(t.wallMs);
+        cpuMs.push_back(t.cpuRecordSubmitMs);
+        double total = 0.0;
+        for (const PassTime& p : t.gpu) {
+            passMs[p.label].push_back(p.milliseconds);
+            total += p.milliseconds;
+            if (p.label == "light" && renderer.lightThisFrame)
+                lightMs.push_back(p.milliseconds);
+        }
+        passMs["total"].push_back(total);
+    }
+    FieldStats stats = readFieldStats(renderer);
+    j["clumps"] = renderer.instanceCount;
+    j["frameMs"] = {{"median", percentile(frameMs, 0.5)}, {"p95", percentile(frameMs, 0.95)}};
+    nlohmann::json gpuMs = nlohmann::json::object();
+    for (auto& [label, values] : passMs)
+        gpuMs[label] = percentile(values, 0.5);
+    j["gpuMs"] = gpuMs;
+    // The light pass runs when the sky has moved enough (FieldRenderer::lightThisFrame).
+    j["lightPass"] = {{"framesRun", lightRuns}, {"msWhenRun", percentile(lightMs, 0.5)}};
+    // Recording and submitting, plus (CPU-driven) stepping, culling and filling the uploads.
+    j["cpuMsPerFrame"] = percentile(cpuMs, 0.5);
+    // The uniform block and the push constants recorded into each frame (FieldRenderer), plus
+    // (CPU-driven) the motion states, LOD coordinates, draw commands and visible lists.
+    j["uploadBytesPerFrame"] = uploadMax;
+    j["uploadBytesPerFrameMin"] = uploadMin;
+    j["trianglesPerFrame"] = stats.trianglesDrawn;
+    // Draws per LOD over all clumps (a crossfading instance counts in both of its LODs).
+    std::vector<uint32_t> perLod(renderer.lodCount, 0);
+    for (size_t m = 0; m < stats.visiblePerMesh.size(); ++m)
+        perLod[m % renderer.lodCount] += stats.visiblePerMesh[m];
+    j["instancesPerLod"] = perLod;
+    j["visibleInstances"] = stats.visibleInstances;
+    destroyOffscreen(ctx, offscreen);
+    destroyFieldRenderer(ctx, renderer);
+    return j;
+}
+
+} // namespace
+
+std::vector<gpu::GpuInstance> tileField(const std::vector<gpu::GpuInstance>& field, uint32_t count) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const gpu::GpuInstance& inst : field) {
+        lo = glm::min(lo, glm::vec3(inst.positionScale));
+        hi = glm::max(hi, glm::vec3(inst.positionScale));
+    }
+    glm::vec3 extent = hi - lo + glm::vec3(1.0f);
+    uint32_t tiles = static_cast<uint32_t>((count + field.size() - 1) / field.size());
+    uint32_t side = static_cast<uint32_t>(std::ceil(std::sqrt(double(tiles))));
+    std::vector<gpu::GpuInstance> out;
+    out.reserve(count);
+    for (uint32_t t = 0; out.size() < count; ++t) {
+        glm::vec3 offset(extent.x * (float(t % side) - float(side - 1) * 0.5f), 0.0f,
+                         extent.z * (float(t / side) - float(side - 1) * 0.5f));
+        for (const gpu::GpuInstance& inst : field) {
+            if (out.size() == count)
+                break;
+            gpu::GpuInstance copy = inst;
+            copy.positionScale += glm::vec4(offset, 0.0f);
+            out.push_back(copy);
+        }
+    }
+    return out;
+}
+
+Camera cameraOnPath(Camera lens, const CameraPath& path, double seconds) {
+    const CameraPose pose = sampleCameraPath(path, path.startTime() + seconds);
+    lens.eye = pose.eye;
+    lens.target = pose.target;
+    return lens;
+}
+
+nlohmann::json benchmarkField(Context& ctx, const std::vector<FieldClump>& clumps,
+                              const std::vector<gpu::GpuInstance>& field, const RgbaImage& atlas,
+                              const FieldScenery& scenery, const FieldBenchOptions& options) {
+    nlohmann::json j = measure(ctx, clumps, field, atlas, scenery, options, options.cpuDriven);
+    j["device"] = ctx.deviceName();
+    j["driver"] = options.cpuDriven ? "cpu" : "gpu";
+    j["vulkanDriver"] = ctx.driverDescription();
+    j["width"] = options.width;
+    j["height"] = options.height;
+    j["frames"] = options.frames;
+    j["instanceRecordBytes"] =
+        sizeof(gpu::GpuInstance) + sizeof(gpu::GpuMotionState) + sizeof(float); // + LOD coordinate
+    if (options.cpuDriven) {
+        // The GPU-driven path in the same run, for the ratio (DESIGN.md 5).
+        nlohmann::json gpu = measure(ctx, clumps, field, atlas, scenery, options, false);
+        j["comparison"] = {
+            {"gpuDriven", gpu},
+            {"cpuTimeRatio", j["cpuMsPerFrame"].get<double>() / std::max(gpu["cpuMsPerFrame"].get<double>(), 1e-9)},
+            {"uploadRatio", double(j["uploadBytesPerFrame"].get<uint64_t>()) /
+                                double(std::max<uint64_t>(gpu["uploadBytesPerFrame"].get<uint64_t>(), 1))}};
+    }
+    return j;
+}
+
+} // namespace meadow
