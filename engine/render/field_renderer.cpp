@@ -119,6 +119,13 @@ FieldClump staticFieldClump(const Mesh& mesh, uint32_t lodCount) {
     return clump;
 }
 
+namespace {
+// createFieldRenderer's work after the checks of its input; may throw with `r` half made.
+void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClump> clumps,
+                       std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
+                       const FieldScenery& scenery);
+} // namespace
+
 FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clumps,
                                   std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
                                   const FieldScenery& scenery) {
@@ -142,6 +149,21 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
         checkClump(clumps[c], c, scenery.lodCount);
 
     FieldRenderer r;
+    try {
+        fillFieldRenderer(ctx, r, clumps, instances, atlas, scenery);
+    } catch (...) {
+        destroyFieldRenderer(ctx, r); // whatever was created before the error
+        throw;
+    }
+    return r;
+}
+
+namespace {
+
+void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClump> clumps,
+                       std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
+                       const FieldScenery& scenery) {
+    const sky::SkyDay& day = scenery.sky;
     r.instanceCount = static_cast<uint32_t>(instances.size());
     r.clumpCount = static_cast<uint32_t>(clumps.size());
     r.lodCount = scenery.lodCount;
@@ -387,8 +409,9 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
                      VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
     uploadToBuffer(ctx, r.terrainIndices, scenery.terrain.indices.data(), r.terrainIndices.size);
     r.terrainIndexCount = uint32_t(scenery.terrain.indices.size());
-    return r;
 }
+
+} // namespace
 
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance, &r.groundMap})

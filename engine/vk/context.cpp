@@ -366,6 +366,10 @@ void createContext(Context& ctx, const ContextOptions& options) {
     ctx.memory = std::make_unique<MemoryAllocator>(ctx);
 }
 
+Context::~Context() {
+    destroyContext(*this);
+}
+
 void destroyContext(Context& ctx) {
     if (ctx.device) {
         vkDeviceWaitIdle(ctx.device);

@@ -58,6 +58,13 @@ struct Context {
 
     std::string deviceName() const { return properties.deviceName; }
     std::string driverDescription() const;
+
+    Context() = default;
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+    // What destroyContext has not destroyed yet (it may be called first, and more than once): a
+    // command that stops on an error leaves no device or instance behind.
+    ~Context();
 };
 
 // Throws meadow::Error with a message naming what is missing (no driver, no device, a feature).
