@@ -1,10 +1,12 @@
 #include "render/field_bench.h"
 
+#include "core/error.h"
 #include "render/cpu_driver.h"
 #include "render/offscreen.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <string>
 
@@ -92,19 +94,32 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
 } // namespace
 
 std::vector<gpu::GpuInstance> tileField(const std::vector<gpu::GpuInstance>& field, uint32_t count) {
+    if (field.empty())
+        throw Error("the field has no clumps to tile");
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (const gpu::GpuInstance& inst : field) {
         lo = glm::min(lo, glm::vec3(inst.positionScale));
         hi = glm::max(hi, glm::vec3(inst.positionScale));
     }
-    glm::vec3 extent = hi - lo + glm::vec3(1.0f);
-    uint32_t tiles = static_cast<uint32_t>((count + field.size() - 1) / field.size());
-    uint32_t side = static_cast<uint32_t>(std::ceil(std::sqrt(double(tiles))));
+    const glm::vec3 extent = hi - lo + glm::vec3(1.0f);
+    // Copies on a square grid of odd side around the field itself, taken ring by ring outwards
+    // (within a ring row by row), so that the field stays where the scene's camera looks and the
+    // copies grow around it: any count shows the view the default field shows, then more beyond.
+    const uint64_t copies = (uint64_t(count) + field.size() - 1) / field.size();
+    int64_t half = 0;
+    while (uint64_t(2 * half + 1) * uint64_t(2 * half + 1) < copies)
+        ++half;
+    std::vector<glm::ivec2> cells;
+    for (int64_t z = -half; z <= half; ++z)
+        for (int64_t x = -half; x <= half; ++x)
+            cells.emplace_back(int(x), int(z));
+    std::stable_sort(cells.begin(), cells.end(), [](glm::ivec2 a, glm::ivec2 b) {
+        return std::max(std::abs(a.x), std::abs(a.y)) < std::max(std::abs(b.x), std::abs(b.y));
+    });
     std::vector<gpu::GpuInstance> out;
     out.reserve(count);
-    for (uint32_t t = 0; out.size() < count; ++t) {
-        glm::vec3 offset(extent.x * (float(t % side) - float(side - 1) * 0.5f), 0.0f,
-                         extent.z * (float(t / side) - float(side - 1) * 0.5f));
+    for (size_t t = 0; out.size() < count; ++t) {
+        const glm::vec3 offset(extent.x * float(cells[t].x), 0.0f, extent.z * float(cells[t].y));
         for (const gpu::GpuInstance& inst : field) {
             if (out.size() == count)
                 break;

@@ -24,7 +24,8 @@ struct FieldBenchOptions {
 
 inline constexpr uint32_t kFieldBenchWarmUp = 5;
 
-// The field's instances tiled (or cut) to `count`: copies of the whole field side by side.
+// The field's instances tiled (or cut) to `count`: the field itself first, where it lies, then
+// whole copies side by side around it, nearest first (a square grid, ring by ring).
 std::vector<gpu::GpuInstance> tileField(const std::vector<gpu::GpuInstance>& field, uint32_t count);
 
 // The camera `lens` (field of view and planes) at the path's pose `seconds` after its start.
