@@ -27,18 +27,13 @@ options:
   --driver gpu|cpu      gpu (default): the compute passes animate, cull and pick LODs; cpu: the
                         CPU does (render/cpu_driver.h) and uploads the results every frame, and
                         the GPU-driven path runs after it for the ratio ("comparison")
-  --preset ci|full      scene preset (default full)
-  --seed S              override the scene's seed
-  --device N|NAME       Vulkan device by index or part of its name (or MEADOW_DEVICE)
-  --validation          run under the Khronos validation layer, synchronization validation
-                        included (or MEADOW_VALIDATION=1); exits 3 if it reports anything
-  --verbose             say which device is used
 )";
 
 } // namespace
 
 int runBenchWith(const Args& argv, const BenchLibrarySource& source) {
-    const std::string help = std::string(source.usage) + "\n" + source.note + kBenchOptions;
+    const std::string help =
+        std::string(source.usage) + "\n" + source.note + kBenchOptions + kSceneAndEngineOptionsHelp;
     if (printHelpIfAsked(argv, help.c_str()))
         return 0;
     CommandSpec spec{

@@ -33,19 +33,12 @@ options:
   --camera EX,EY,EZ,TX,TY,TZ   eye and target in metres (default: the scene's)
   --camera-path FILE    a camera path (JSON keyframes, as meadow view records): frame i sees the
                         path at i/30 s; without --frames, every frame of the path is rendered
-  --preset ci|full      scene preset (default full)
-  --seed S              override the scene's seed
-  --device N|NAME       Vulkan device by index or part of its name (or MEADOW_DEVICE)
-  --validation          run under the Khronos validation layer, synchronization validation
-                        included (or MEADOW_VALIDATION=1); exits 3 if it reports anything
-  --verbose             say which device is used
 )";
-
 
 } // namespace
 
 int runRender(const Args& argv) {
-    if (printHelpIfAsked(argv, kRenderHelp))
+    if (printHelpIfAsked(argv, (std::string(kRenderHelp) + kSceneAndEngineOptionsHelp).c_str()))
         return 0;
     CommandSpec spec{"render",
                      {"SCENE"},

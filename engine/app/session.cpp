@@ -6,6 +6,14 @@
 
 namespace meadow {
 
+const char* const kSceneAndEngineOptionsHelp = R"(  --preset ci|full      scene preset (default full)
+  --seed S              override the scene's seed
+  --device N|NAME       Vulkan device by index or part of its name (or MEADOW_DEVICE)
+  --validation          run under the Khronos validation layer, synchronization validation
+                        included (or MEADOW_VALIDATION=1); exits 3 if it reports anything
+  --verbose             say which device is used
+)";
+
 void addEngineOptions(CommandSpec& spec) {
     spec.valueOptions.insert("--device");
     spec.switchOptions.insert("--validation");

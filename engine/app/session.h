@@ -12,6 +12,9 @@
 
 namespace meadow {
 
+// The help lines of the options below (--preset, --seed; --device, --validation, --verbose).
+extern const char* const kSceneAndEngineOptionsHelp;
+
 // Options every rendering command accepts.
 void addEngineOptions(CommandSpec& spec);
 // Options of commands that take a scene (--preset, --seed).
