@@ -21,32 +21,47 @@ std::vector<float> frontIrradiance(const VertexAppearance& appearance, const std
 
 } // namespace
 
-std::array<ClumpLod, kLodCount> buildClumpLods(const ClumpMotion& motion, const ClumpLight& light, const Mesh& meanPose,
-                                               const std::vector<float>& testSky, const LodParams& params) {
-    const uint32_t vertexCount = uint32_t(meanPose.vertices.size());
-    std::vector<glm::vec3> positions(vertexCount), normals(vertexCount);
-    std::vector<glm::vec2> uvs(vertexCount);
-    for (uint32_t v = 0; v < vertexCount; ++v) {
-        positions[v] = glm::vec3(meanPose.vertices[v].positionU);
-        normals[v] = glm::vec3(meanPose.vertices[v].normalV);
-        uvs[v] = glm::vec2(meanPose.vertices[v].positionU.w, meanPose.vertices[v].normalV.w);
-    }
+SimplifyInput ClumpSimplifyData::input() const {
+    SimplifyInput in;
+    in.positions = positions;
+    in.normals = normals;
+    in.uvs = uvs;
+    in.indices = indices;
     // Motion in metres (weight 1: a vertex that moves differently costs like one that is out of
     // place) and the mean light transfer in units of its own spread over the clump.
-    const AttributeValues motionRows = motionAttributes(motion.basis, 0);
-    const AttributeValues transfer = meanTransferAttributes(light.vertices);
-    const std::vector<uint32_t> groups = rodGroups(motion.clump.mesh);
-    SimplifyInput input;
-    input.positions = positions;
-    input.normals = normals;
-    input.uvs = uvs;
-    input.indices = meanPose.indices;
-    input.attributes = {{"motion", motionRows.values, motionRows.width, 1.0f},
-                        {"light", transfer.values, transfer.width, 0.01f}};
-    input.collapseGroups = groups;
+    in.attributes = {{"motion", motionRows.values, motionRows.width, 1.0f},
+                     {"light", transfer.values, transfer.width, 0.01f}};
+    in.collapseGroups = groups;
+    return in;
+}
+
+ClumpSimplifyData clumpSimplifyData(const ClumpMotion& motion, const Mesh& meanPose) {
+    ClumpSimplifyData data;
+    const uint32_t vertexCount = uint32_t(meanPose.vertices.size());
+    data.positions.resize(vertexCount);
+    data.normals.resize(vertexCount);
+    data.uvs.resize(vertexCount);
+    for (uint32_t v = 0; v < vertexCount; ++v) {
+        data.positions[v] = glm::vec3(meanPose.vertices[v].positionU);
+        data.normals[v] = glm::vec3(meanPose.vertices[v].normalV);
+        data.uvs[v] = glm::vec2(meanPose.vertices[v].positionU.w, meanPose.vertices[v].normalV.w);
+    }
+    data.indices = meanPose.indices;
+    data.groups = rodGroups(motion.clump.mesh);
+    data.motionRows = motionAttributes(motion.basis, 0);
+    return data;
+}
+
+std::array<ClumpLod, kLodCount> buildClumpLods(const ClumpMotion& motion, const ClumpLight& light, const Mesh& meanPose,
+                                               const std::vector<float>& testSky, const LodParams& params) {
+    ClumpSimplifyData data = clumpSimplifyData(motion, meanPose);
+    data.transfer = meanTransferAttributes(light.vertices);
+    const SimplifyInput input = data.input();
     LodOptions options;
     options.triangleFractions = params.triangleFractions;
     const std::array<MeshLod, kLodCount> lods = buildLods(input, options);
+    const std::vector<glm::vec3>& positions = data.positions;
+    const uint32_t vertexCount = uint32_t(positions.size());
 
     // The error over frames of the strongest wind, where LODs differ most.
     const MotionClip& strongest = motion.clips.back();

@@ -13,6 +13,7 @@
 // attribute widths (what the quadrics cost) are printed in the label.
 #include "fixtures.h"
 
+#include "clump_lod.h"
 #include "clump_motion.h"
 #include "light/vertex_appearance.h"
 #include "lod/lod.h"
@@ -39,23 +40,8 @@ struct QemCase {
     Scene scene;
     ClumpMotion motion;
     Mesh meanPose;
-    std::vector<glm::vec3> positions, normals;
-    std::vector<glm::vec2> uvs;
-    std::vector<uint32_t> groups;
-    AttributeValues motionRows, transfer;
+    ClumpSimplifyData data; // as buildClumpLods gives the simplifier
     std::array<uint32_t, kLodCount> targets{};
-
-    SimplifyInput input() const {
-        SimplifyInput in;
-        in.positions = positions;
-        in.normals = normals;
-        in.uvs = uvs;
-        in.indices = meanPose.indices;
-        in.attributes = {{"motion", motionRows.values, motionRows.width, 1.0f},
-                         {"light", transfer.values, transfer.width, 0.01f}};
-        in.collapseGroups = groups;
-        return in;
-    }
 };
 
 QemCase& qemCase(const std::string& preset) {
@@ -73,18 +59,8 @@ QemCase& qemCase(const std::string& preset) {
     c->motion = buildClumpMotion(irisClump(preset), c->scene, c->scene.seed * 1000003ull);
     c->meanPose = clumpRenderMesh(c->motion);
 
-    // As buildClumpLods unpacks the drawn mesh.
-    const uint32_t vertexCount = uint32_t(c->meanPose.vertices.size());
-    c->positions.resize(vertexCount);
-    c->normals.resize(vertexCount);
-    c->uvs.resize(vertexCount);
-    for (uint32_t v = 0; v < vertexCount; ++v) {
-        c->positions[v] = glm::vec3(c->meanPose.vertices[v].positionU);
-        c->normals[v] = glm::vec3(c->meanPose.vertices[v].normalV);
-        c->uvs[v] = glm::vec2(c->meanPose.vertices[v].positionU.w, c->meanPose.vertices[v].normalV.w);
-    }
-    c->groups = rodGroups(c->motion.clump.mesh);
-    c->motionRows = motionAttributes(c->motion.basis, 0);
+    c->data = clumpSimplifyData(c->motion, c->meanPose);
+    const uint32_t vertexCount = uint32_t(c->data.positions.size());
 
     // One bake of the mean pose stands for the mean transfer T̄ (gradients zero: only T̄ is read).
     transfer::BakeSettings bake = transfer::bakeSettingsForPreset("ci");
@@ -92,14 +68,14 @@ QemCase& qemCase(const std::string& preset) {
     const std::vector<glm::vec3> albedo(vertexCount, glm::vec3(0.4f, 0.5f, 0.3f));
     const std::vector<float> translucency = transfer::translucencyForParts(c->motion.clump.mesh.parts, bake);
     const transfer::ClumpTransfer baked =
-        transfer::bakeTransfer({c->positions, c->normals, c->meanPose.indices, albedo, translucency}, bake);
+        transfer::bakeTransfer({c->data.positions, c->data.normals, c->meanPose.indices, albedo, translucency}, bake);
     VertexAppearance appearance;
     appearance.vertexCount = vertexCount;
     appearance.valuesPerVertex = uint32_t(baked.vertices.coefficients.size() / vertexCount);
     appearance.coefficients.assign(baked.vertices.coefficients.size() * 4, 0.0f);
     for (size_t i = 0; i < baked.vertices.coefficients.size(); ++i)
         appearance.coefficients[4 * i] = baked.vertices.coefficients[i];
-    c->transfer = meanTransferAttributes(appearance);
+    c->data.transfer = meanTransferAttributes(appearance);
 
     const double fullTriangles = double(c->meanPose.indices.size() / 3);
     for (uint32_t l = 0; l < kLodCount; ++l) // lod_chain.cpp's budgets
@@ -113,8 +89,8 @@ std::string qemLabel(const std::string& preset, const QemCase& c, const char* it
     std::snprintf(text, sizeof text,
                   "%s clump: %zu vertices, %zu triangles -> %u; attributes 6 + %u motion + %u light; "
                   "items = %s",
-                  preset.c_str(), c.positions.size(), c.meanPose.indices.size() / 3, c.targets[kLodCount - 1],
-                  c.motionRows.width, c.transfer.width, items);
+                  preset.c_str(), c.data.positions.size(), c.meanPose.indices.size() / 3, c.targets[kLodCount - 1],
+                  c.data.motionRows.width, c.data.transfer.width, items);
     return text;
 }
 
@@ -122,7 +98,7 @@ void qemSimplify(benchmark::State& state, const std::string& preset) {
     QemCase* c = setupOrFail(state, [&]() -> QemCase& { return qemCase(preset); });
     if (!c)
         return;
-    const SimplifyInput input = c->input();
+    const SimplifyInput input = c->data.input();
     SimplifiedMesh last;
     try {
         for (auto _ : state) {
@@ -152,7 +128,7 @@ void qemQuadrics(benchmark::State& state, const std::string& preset) {
     QemCase* c = setupOrFail(state, [&]() -> QemCase& { return qemCase(preset); });
     if (!c)
         return;
-    const SimplifyInput input = c->input();
+    const SimplifyInput input = c->data.input();
     try {
         for (auto _ : state) {
             MeshSimplifier simplifier(input);
@@ -170,7 +146,7 @@ void lodChain(benchmark::State& state, const std::string& preset) {
     QemCase* c = setupOrFail(state, [&]() -> QemCase& { return qemCase(preset); });
     if (!c)
         return;
-    const SimplifyInput input = c->input();
+    const SimplifyInput input = c->data.input();
     LodOptions options;
     options.triangleFractions = c->scene.lod.triangleFractions;
     try {
