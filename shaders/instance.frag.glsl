@@ -7,7 +7,7 @@
 
 MEADOW_FRAME_BLOCK(0, 0)
 // The plants' texture atlas (sRGB texels, so samples are linear), after the vertex stage's
-// storage buffers: with it between them, lavapipe (Mesa 22.3) at 128-bit vectors corrupted its heap.
+// storage buffers.
 layout(set = 0, binding = 7) uniform sampler2D atlas;
 
 layout(location = 0) in vec3 inNormal;

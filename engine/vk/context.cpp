@@ -1,5 +1,6 @@
 #include "vk/context.h"
 
+#include "vk/driver_workarounds.h"
 #include "vk/memory.h"
 #include "vk/vk_check.h"
 
@@ -191,6 +192,10 @@ std::vector<std::string> listDevices(const Context& context) {
 void createContext(Context& ctx, const ContextOptions& options) {
     ctx.validationEnabled = options.validation;
     ctx.validation = std::make_unique<ValidationCounter>();
+    // Before any Vulkan call: lavapipe reads its CPU settings once, when the loader loads it.
+    std::string workaround = applyLavapipeWorkarounds();
+    if (options.verbose && !workaround.empty())
+        std::fprintf(stderr, "meadow: %s\n", workaround.c_str());
 
     VkResult loaderVersion = VK_SUCCESS;
     uint32_t apiVersion = 0;
@@ -312,6 +317,16 @@ void createContext(Context& ctx, const ContextOptions& options) {
 
     ctx.physicalDevice = devices[static_cast<size_t>(chosen)];
     ctx.properties = props[static_cast<size_t>(chosen)];
+    {
+        VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+        VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+        vkGetPhysicalDeviceProperties2(ctx.physicalDevice, &props2);
+        if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) {
+            std::string unsupported = lavapipeUnsupportedReason(lavapipeSettingsFromEnvironment());
+            if (!unsupported.empty())
+                throw Error(unsupported);
+        }
+    }
     vkGetPhysicalDeviceMemoryProperties(ctx.physicalDevice, &ctx.memoryProperties);
     {
         uint32_t familyCount = 0;
