@@ -1,5 +1,7 @@
 #include "render/field_renderer.h"
 
+#include "render/draw_ranges.h"
+
 #include "vk/barriers.h"
 #include "vk/context.h"
 #include "vk/memory_budget.h"
@@ -322,8 +324,17 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
     uint32_t first = 0;
     for (uint32_t m = 0; m < r.meshCount; ++m) {
         draws[m].firstInstance = first;
+        r.drawCapacity.push_back(perClump[m / r.lodCount]);
         first += perClump[m / r.lodCount];
     }
+    r.lodVertexCount = lodVertices.size();
+    r.visibleCount = first;
+    // Every range a draw reads, against the buffer it reads it from, before anything is drawn.
+    std::vector<std::string> rangeProblems =
+        checkDrawRanges(draws, {indices, r.lodVertexCount, r.visibleCount, r.drawCapacity});
+    if (!rangeProblems.empty())
+        throw Error("the field's draws read outside their buffers: " + rangeProblems.front() + " (" +
+                    std::to_string(rangeProblems.size()) + " problems)");
     const size_t skyStride = gpu::kSkyFrameHeaderFloats + size_t(day.imageWidth) * day.imageHeight * 3;
 
     // Everything the field puts in device memory, checked against what the device has before the
@@ -386,7 +397,9 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
     deviceBuffer(r.vertexLight, nullptr, size_t(lightVec4s) * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.skyData, skyData.data(), skyData.size() * sizeof(float));
     r.indices = createBuffer(ctx, indices.size() * sizeof(uint32_t),
-                             VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
+                             VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT, // read back by tests (draw_ranges.h)
+                             MemoryUse::Device);
     uploadToBuffer(ctx, r.indices, indices.data(), r.indices.size);
     VkDeviceSize drawBytes = draws.size() * sizeof(gpu::GpuDrawIndexedCommand);
     deviceBuffer(r.drawCommands, draws.data(), drawBytes,
@@ -704,6 +717,7 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
     std::memcpy(draws.data(), static_cast<const char*>(r.statsReadback.mapped()) + sizeof(s),
                 draws.size() * sizeof(gpu::GpuDrawIndexedCommand));
+    out.draws = draws;
     out.trianglesDrawn = r.terrainIndexCount / 3 + 1; // terrain and sky
     for (uint32_t m = 0; m < r.meshCount; ++m) {
         out.visiblePerMesh.push_back(draws[m].instanceCount);

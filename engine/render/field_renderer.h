@@ -144,6 +144,9 @@ struct FieldRenderer {
     uint32_t lodCount = 1;
     gpu::GpuLodParams lodParams{};
     std::vector<uint32_t> meshTriangles; // per draw bucket
+    std::vector<uint32_t> drawCapacity;  // per draw bucket: the instances its visible range holds
+    uint64_t lodVertexCount = 0;
+    uint64_t visibleCount = 0;
     std::vector<uint32_t> lightVertices; // per clump: vertices x variants (light.comp threads)
     uint32_t terrainIndexCount = 0;
     glm::vec4 mirrorNormal{0.0f, 0.0f, 1.0f, 0.0f}; // push constant of the instance pipeline
@@ -168,8 +171,9 @@ struct FieldRenderer {
 struct FieldStats {
     uint32_t visibleInstances = 0;
     uint32_t testedInstances = 0;
-    uint64_t trianglesDrawn = 0;          // instances + terrain + sky
-    std::vector<uint32_t> visiblePerMesh; // per draw bucket; a crossfading instance counts in two
+    uint64_t trianglesDrawn = 0;                   // instances + terrain + sky
+    std::vector<uint32_t> visiblePerMesh;          // per draw bucket; a crossfading instance counts in two
+    std::vector<gpu::GpuDrawIndexedCommand> draws; // the frame's indirect draws, as the cull pass left them
 };
 
 // Every instance's `mesh` names a clump; its boundingRadius must hold every LOD of it as it moves.

@@ -95,6 +95,15 @@ std::vector<VkPhysicalDevice> enumeratePhysicalDevices(VkInstance instance) {
 // The device extensions meadow requires.
 constexpr const char* kDeviceExtensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
 
+bool deviceHasExtension(VkPhysicalDevice pd, const char* name) {
+    uint32_t extCount = 0;
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &extCount, nullptr);
+    std::vector<VkExtensionProperties> exts(extCount);
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &extCount, exts.data());
+    return std::any_of(exts.begin(), exts.end(),
+                       [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
 // Everything meadow needs from a device, as a list of human-readable gaps (empty: usable).
 std::vector<std::string> missingRequirements(VkPhysicalDevice pd, const ContextOptions& options, VkInstance instance,
                                              uint32_t* queueFamilyOut) {
@@ -106,14 +115,7 @@ std::vector<std::string> missingRequirements(VkPhysicalDevice pd, const ContextO
         missing.push_back("Vulkan 1.3 (device reports " + std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." +
                           std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + ")");
 
-    uint32_t extCount = 0;
-    vkEnumerateDeviceExtensionProperties(pd, nullptr, &extCount, nullptr);
-    std::vector<VkExtensionProperties> exts(extCount);
-    vkEnumerateDeviceExtensionProperties(pd, nullptr, &extCount, exts.data());
-    auto hasExt = [&](const char* name) {
-        return std::any_of(exts.begin(), exts.end(),
-                           [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
-    };
+    auto hasExt = [&](const char* name) { return deviceHasExtension(pd, name); };
     for (const char* ext : kDeviceExtensions)
         if (!hasExt(ext))
             missing.push_back(std::string("extension ") + ext);
@@ -165,6 +167,11 @@ std::vector<std::string> missingRequirements(VkPhysicalDevice pd, const ContextO
 }
 
 } // namespace
+
+bool robustAccessRequestedByEnvironment() {
+    const char* v = std::getenv("MEADOW_ROBUST_BUFFER_ACCESS");
+    return v && *v && std::strcmp(v, "0") != 0;
+}
 
 bool validationRequestedByEnvironment() {
     const char* v = std::getenv("MEADOW_VALIDATION");
@@ -359,6 +366,32 @@ void createContext(Context& ctx, const ContextOptions& options) {
     std::vector<const char*> deviceExtensions(std::begin(kDeviceExtensions), std::end(kDeviceExtensions));
     if (options.presentation)
         deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+
+    // MEADOW_ROBUST_BUFFER_ACCESS=1: every buffer access bounds-checked by the driver (out of range
+    // reads give zero, writes are dropped), robustness2's tighter rules where the device has them.
+    // A frame that changes under it read or wrote outside a buffer (docs/ROBUSTNESS.md).
+    VkPhysicalDeviceRobustness2FeaturesEXT robustness2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ROBUSTNESS_2_FEATURES_EXT};
+    if (robustAccessRequestedByEnvironment()) {
+        VkPhysicalDeviceFeatures supported;
+        vkGetPhysicalDeviceFeatures(ctx.physicalDevice, &supported);
+        if (!supported.robustBufferAccess)
+            throw Error(std::string("MEADOW_ROBUST_BUFFER_ACCESS: ") + ctx.properties.deviceName +
+                        " lacks the feature robustBufferAccess");
+        f2.features.robustBufferAccess = VK_TRUE;
+        VkPhysicalDeviceRobustness2FeaturesEXT has{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ROBUSTNESS_2_FEATURES_EXT};
+        VkPhysicalDeviceFeatures2 query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &has};
+        if (deviceHasExtension(ctx.physicalDevice, VK_EXT_ROBUSTNESS_2_EXTENSION_NAME)) {
+            vkGetPhysicalDeviceFeatures2(ctx.physicalDevice, &query);
+            robustness2.robustBufferAccess2 = has.robustBufferAccess2;
+            robustness2.robustImageAccess2 = has.robustImageAccess2;
+            robustness2.pNext = f2.pNext;
+            f2.pNext = &robustness2;
+            deviceExtensions.push_back(VK_EXT_ROBUSTNESS_2_EXTENSION_NAME);
+        }
+        if (options.verbose)
+            std::fprintf(stderr, "meadow: robust buffer access on (robustBufferAccess2 %s)\n",
+                         robustness2.robustBufferAccess2 ? "on" : "not available");
+    }
 
     VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f2};
     deviceInfo.queueCreateInfoCount = 1;

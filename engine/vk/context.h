@@ -77,6 +77,11 @@ std::vector<std::string> listDevices(const Context& context);
 // True when validation was requested by the environment (MEADOW_VALIDATION=1).
 bool validationRequestedByEnvironment();
 
+// True when MEADOW_ROBUST_BUFFER_ACCESS=1: createContext turns on the device's robust buffer
+// access (and robustBufferAccess2 where it has VK_EXT_robustness2), so that no access leaves its
+// buffer; a frame that differs from the same frame without it read or wrote outside one.
+bool robustAccessRequestedByEnvironment();
+
 // Records into a fresh primary command buffer, submits, and waits for it to finish.
 template <typename Record> void submitAndWait(Context& context, Record&& record);
 VkCommandBuffer beginOneShot(Context& context);

@@ -8,6 +8,7 @@
 #include "mesh.h"
 #include "render/cpu_driver.h"
 #include "render/cull_reference.h"
+#include "render/draw_ranges.h"
 #include "render/field_renderer.h"
 #include "render/offscreen.h"
 #include "sh_light.h"
@@ -294,6 +295,8 @@ TEST_F(Gpu, LodCullMatchesCpuReference) {
     FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
     Offscreen offscreen = createOffscreen(*context, {160, 120});
     const glm::vec3 eyes[] = {{0, 2, 0}, {-150, 30, -150}, {0, 2.2f, 0.4f}, {50, 5, 20}};
+    std::vector<uint32_t> indices(renderer.indices.size / sizeof(uint32_t));
+    readbackBuffer(*context, renderer.indices, indices.data(), renderer.indices.size);
     size_t crossfading = 0, lodsSeen = 0;
     for (const glm::vec3& eye : eyes) {
         Camera camera;
@@ -308,6 +311,11 @@ TEST_F(Gpu, LodCullMatchesCpuReference) {
         readbackBuffer(*context, renderer.lodState, after.data(), after.size() * 4);
         std::vector<gpu::GpuDrawIndexedCommand> draws(renderer.meshCount);
         readbackBuffer(*context, renderer.drawCommands, draws.data(), draws.size() * sizeof(draws[0]));
+        // Every draw the cull pass left reads inside the index, LOD vertex and visible buffers.
+        std::vector<std::string> outside =
+            checkDrawRanges(draws, {indices, renderer.lodVertexCount, renderer.visibleCount, renderer.drawCapacity});
+        EXPECT_TRUE(outside.empty()) << outside.front();
+        EXPECT_EQ(renderer.visibleList.size, std::max<VkDeviceSize>(renderer.visibleCount * 4, 16));
         std::vector<uint32_t> list(size_t(draws.back().firstInstance) + instances.size());
         readbackBuffer(*context, renderer.visibleList, list.data(), renderer.visibleList.size);
 
