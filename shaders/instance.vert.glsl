@@ -46,8 +46,8 @@ void main() {
     // x̄ + U q, q blended across a graph jump (motion_step.h): the old path's weight fades from 1.
     // (Vertex shading is lavapipe's single-threaded stage: loads are what it pays for, so the old
     // path's coordinates are read only while a blend runs.)
-    // (lavapipe at 128-bit vectors on an AVX-512 CPU overruns its shaded-vertex buffer with this
-    // loop in any form; meadow hides AVX-512 from it there: docs/ROBUSTNESS.md.)
+    // (A lavapipe crash once blamed on this loop's shape came from Mesa's shader cache handing
+    // 256-bit vertex code to a 128-bit process: docs/ROBUSTNESS.md.)
     uint q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
     bool blending = inst.pose.z > 0.0;
     vec3 d = vec3(0.0);

@@ -4,63 +4,71 @@
 #include <string_view>
 
 namespace meadow {
+namespace {
+
+std::string environment(const char* name) {
+    const char* value = std::getenv(name);
+    return value ? value : "";
+}
+
+} // namespace
 
 LavapipeSettings lavapipeSettingsFromEnvironment() {
     LavapipeSettings s;
-    if (const char* width = std::getenv("LP_NATIVE_VECTOR_WIDTH")) {
-        char* end = nullptr;
-        unsigned long value = std::strtoul(width, &end, 10);
-        if (end != width && *end == '\0' && value <= 4096)
-            s.vectorWidth = unsigned(value);
-    }
-    if (const char* caps = std::getenv("GALLIUM_OVERRIDE_CPU_CAPS"))
-        s.cpuCapsOverride = caps;
+    const std::string width = environment("LP_NATIVE_VECTOR_WIDTH");
+    char* end = nullptr;
+    const unsigned long value = std::strtoul(width.c_str(), &end, 10);
+    if (!width.empty() && *end == '\0' && value > 0 && value <= 4096)
+        s.vectorWidth = unsigned(value);
+    s.cpuCapsOverride = environment("GALLIUM_OVERRIDE_CPU_CAPS");
+    s.shaderCacheDir = environment("MESA_SHADER_CACHE_DIR");
+    s.xdgCacheHome = environment("XDG_CACHE_HOME");
+    s.home = environment("HOME");
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_cpu_init();
     s.cpuHasAvx = __builtin_cpu_supports("avx");
-    s.cpuHasAvx512 = __builtin_cpu_supports("avx512f");
 #endif
     return s;
 }
 
-namespace {
-// The values of GALLIUM_OVERRIDE_CPU_CAPS that Mesa 22.3 acts on (util/u_cpu_detect.c); it
-// ignores any other. All but the last hide AVX.
-constexpr std::string_view kCapsValues[] = {"nosse", "sse", "sse2", "sse3", "ssse3", "sse4.1", "avx"};
-constexpr std::string_view kCapsAvx = "avx";
-
-bool mesaActsOn(const std::string& caps) {
-    for (std::string_view value : kCapsValues)
-        if (caps == value)
-            return true;
-    return false;
-}
-} // namespace
-
-std::string lavapipeCapsWorkaround(const LavapipeSettings& s) {
-    // 128-bit vectors with AVX-512 left visible to LLVM: the vertex loop overruns its buffer.
-    if (s.cpuHasAvx512 && s.vectorWidth != 0 && s.vectorWidth <= 128 && !mesaActsOn(s.cpuCapsOverride))
-        return std::string(kCapsAvx);
-    return {};
+std::vector<std::pair<std::string, std::string>> lavapipeEnvironment(const LavapipeSettings& s) {
+    if (s.vectorWidth == 0)
+        return {}; // lavapipe picks its width from the CPU and caps, which Mesa's cache key holds
+    // Mesa's own choice of folder (util/disk_cache_os.c), one level down.
+    std::string base = s.shaderCacheDir;
+    if (base.empty() && !s.xdgCacheHome.empty())
+        base = s.xdgCacheHome;
+    if (base.empty() && !s.home.empty())
+        base = s.home + "/.cache";
+    if (base.empty())
+        return {{"MESA_SHADER_CACHE_DISABLE", "true"}};
+    return {{"MESA_SHADER_CACHE_DIR", base + "/meadow-lavapipe-" + std::to_string(s.vectorWidth)}};
 }
 
 std::string lavapipeUnsupportedReason(const LavapipeSettings& s) {
-    if (s.cpuHasAvx && mesaActsOn(s.cpuCapsOverride) && s.cpuCapsOverride != kCapsAvx)
-        return "GALLIUM_OVERRIDE_CPU_CAPS=" + s.cpuCapsOverride +
-               ": lavapipe (Mesa 22.3) hides this CPU's AVX from LLVM but still runs meadow's compute passes "
-               "into an illegal instruction; unset it or set it to 'avx' (docs/ROBUSTNESS.md)";
+    // Mesa 22.3's values that hide AVX (util/u_cpu_detect.c); it ignores values it does not know.
+    static constexpr std::string_view kBelowAvx[] = {"nosse", "sse", "sse2", "sse3", "ssse3", "sse4.1"};
+    if (!s.cpuHasAvx)
+        return {};
+    for (std::string_view caps : kBelowAvx)
+        if (s.cpuCapsOverride == caps)
+            return "GALLIUM_OVERRIDE_CPU_CAPS=" + s.cpuCapsOverride +
+                   ": lavapipe (Mesa 22.3) hides this CPU's AVX and F16C, and its half-float conversion then "
+                   "jumps into an illegal instruction; unset it or set it to 'avx' (docs/ROBUSTNESS.md)";
     return {};
 }
 
 std::string applyLavapipeWorkarounds() {
-    LavapipeSettings settings = lavapipeSettingsFromEnvironment();
-    std::string caps = lavapipeCapsWorkaround(settings);
-    if (caps.empty())
-        return {};
-    setenv("GALLIUM_OVERRIDE_CPU_CAPS", caps.c_str(), 1); // replaces only a value Mesa would ignore
-    return "LP_NATIVE_VECTOR_WIDTH=" + std::to_string(settings.vectorWidth) +
-           " on an AVX-512 CPU: set GALLIUM_OVERRIDE_CPU_CAPS=" + caps +
-           " (lavapipe's vertex loop overruns its buffer otherwise; docs/ROBUSTNESS.md)";
+    std::string note;
+    for (const auto& [name, value] : lavapipeEnvironment(lavapipeSettingsFromEnvironment())) {
+        setenv(name.c_str(), value.c_str(), 1);
+        note += (note.empty() ? "" : " ") + name + "=" + value;
+    }
+    if (!note.empty())
+        note = "lavapipe's shader cache kept apart for LP_NATIVE_VECTOR_WIDTH (Mesa 22.3 would reuse code "
+               "compiled for another width): " +
+               note;
+    return note;
 }
 
 } // namespace meadow

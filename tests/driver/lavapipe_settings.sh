@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders the golden scene (golden.sh's field_afternoon) under every setting lavapipe can be made
-# to compile for on this machine: vector widths 128 and 256, each with GALLIUM_OVERRIDE_CPU_CAPS
-# unset and set to each value Mesa 22.3 accepts. Every render runs under a guard allocator, so a
+# to compile for on this machine: vector widths 256 and 128, each with GALLIUM_OVERRIDE_CPU_CAPS
+# unset and set to each value Mesa 22.3 accepts, all sharing one shader cache. Every render runs under a guard allocator, so a
 # driver that writes past a heap block fails here instead of in a user's render, and must match
 # the golden image. Settings below AVX on a CPU that has AVX must be refused with a clear message
 # (engine/vk/driver_workarounds.h).
@@ -24,10 +24,18 @@ case "${GUARD:-malloc-check}" in
   *) echo "lavapipe_settings.sh: GUARD must be malloc-check or efence" >&2; exit 2 ;;
 esac
 
+# One shader-cache root for the whole sweep, as a user's ~/.cache is: Mesa 22.3 keys vertex code by
+# the CPU caps but not by the vector width, so a 128-bit render after a 256-bit one would run the
+# 256-bit code and overrun its buffer, unless meadow keeps each width's cache apart. 256 goes first.
+cache_root="$(mktemp -d)"
+trap 'rm -rf "$cache_root"' EXIT
+export MESA_SHADER_CACHE_DIR="$cache_root"
+unset MESA_SHADER_CACHE_DISABLE
+
 has_avx=0
 grep -qw avx /proc/cpuinfo && has_avx=1
 failures=0
-for width in 128 256; do
+for width in 256 128; do
   for caps in unset nosse sse sse2 sse3 ssse3 sse4.1 avx; do
     setting="LP_NATIVE_VECTOR_WIDTH=$width GALLIUM_OVERRIDE_CPU_CAPS=$caps"
     env_caps=(GALLIUM_OVERRIDE_CPU_CAPS="$caps")
