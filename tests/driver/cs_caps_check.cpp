@@ -10,51 +10,19 @@
 
 #include "cs_caps_check.comp.h"
 
+#include "minimal_vulkan.h"
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <vulkan/vulkan.h>
 
-namespace {
-
-void check(VkResult result, const char* what) {
-    if (result != VK_SUCCESS) {
-        std::fprintf(stderr, "cs_caps_check: %s failed (VkResult %d)\n", what, int(result));
-        std::exit(2);
-    }
-}
-
-} // namespace
+using minimal::check;
 
 int main() {
-    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-    app.apiVersion = VK_API_VERSION_1_3;
-    VkInstanceCreateInfo instanceInfo{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-    instanceInfo.pApplicationInfo = &app;
-    VkInstance instance;
-    check(vkCreateInstance(&instanceInfo, nullptr, &instance), "vkCreateInstance");
-    uint32_t gpuCount = 1;
-    VkPhysicalDevice gpu;
-    VkResult enumerated = vkEnumeratePhysicalDevices(instance, &gpuCount, &gpu);
-    if ((enumerated != VK_SUCCESS && enumerated != VK_INCOMPLETE) || gpuCount == 0) {
-        std::fprintf(stderr, "cs_caps_check: no Vulkan device\n");
-        return 2;
-    }
-    VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(gpu, &props);
-
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    queueInfo.queueFamilyIndex = 0;
-    queueInfo.queueCount = 1;
-    queueInfo.pQueuePriorities = &priority;
-    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    deviceInfo.queueCreateInfoCount = 1;
-    deviceInfo.pQueueCreateInfos = &queueInfo;
-    VkDevice device;
-    check(vkCreateDevice(gpu, &deviceInfo, nullptr, &device), "vkCreateDevice");
-    VkQueue queue;
-    vkGetDeviceQueue(device, 0, 0, &queue);
+    minimal::program = "cs_caps_check";
+    minimal::Device vk = minimal::createDevice(nullptr);
+    VkPhysicalDevice gpu = vk.gpu;
+    VkDevice device = vk.device;
+    VkQueue queue = vk.queue;
 
     // Two words, host visible: in [0] a half float pair, out [1] the low half as a float.
     VkBufferCreateInfo bufferInfo{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -64,15 +32,10 @@ int main() {
     check(vkCreateBuffer(device, &bufferInfo, nullptr, &buffer), "vkCreateBuffer");
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, buffer, &req);
-    VkPhysicalDeviceMemoryProperties memoryProps;
-    vkGetPhysicalDeviceMemoryProperties(gpu, &memoryProps);
-    const VkMemoryPropertyFlags hostFlags = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = UINT32_MAX;
-    for (uint32_t i = 0; i < memoryProps.memoryTypeCount && alloc.memoryTypeIndex == UINT32_MAX; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (memoryProps.memoryTypes[i].propertyFlags & hostFlags) == hostFlags)
-            alloc.memoryTypeIndex = i;
+    alloc.memoryTypeIndex = minimal::memoryType(
+        gpu, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     VkDeviceMemory memory;
     check(vkAllocateMemory(device, &alloc, nullptr, &memory), "vkAllocateMemory");
     check(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
@@ -160,12 +123,11 @@ int main() {
     vkDestroyDescriptorSetLayout(device, setLayout, nullptr);
     vkDestroyBuffer(device, buffer, nullptr);
     vkFreeMemory(device, memory, nullptr);
-    vkDestroyDevice(device, nullptr);
-    vkDestroyInstance(instance, nullptr);
+    minimal::destroyDevice(vk);
     if (result != 1.5f) {
-        std::fprintf(stderr, "cs_caps_check: unpackHalf2x16(1.5) gave %g on %s\n", double(result), props.deviceName);
+        std::fprintf(stderr, "cs_caps_check: unpackHalf2x16(1.5) gave %g on %s\n", double(result), vk.props.deviceName);
         return 1;
     }
-    std::printf("cs_caps_check: ran on %s\n", props.deviceName);
+    std::printf("cs_caps_check: ran on %s\n", vk.props.deviceName);
     return 0;
 }

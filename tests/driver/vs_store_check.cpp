@@ -24,6 +24,7 @@
 #include "vs_outputs.frag.h"
 #include "vs_outputs.vert.h"
 
+#include "minimal_vulkan.h"
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -31,26 +32,10 @@
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
-#include <vulkan/vulkan.h>
+
+using minimal::check;
 
 namespace {
-
-void check(VkResult result, const char* what) {
-    if (result != VK_SUCCESS) {
-        std::fprintf(stderr, "vs_store_check: %s failed (VkResult %d)\n", what, int(result));
-        std::exit(2);
-    }
-}
-
-uint32_t memoryType(VkPhysicalDevice gpu, uint32_t bits, VkMemoryPropertyFlags flags) {
-    VkPhysicalDeviceMemoryProperties props;
-    vkGetPhysicalDeviceMemoryProperties(gpu, &props);
-    for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
-        if ((bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags)
-            return i;
-    std::fprintf(stderr, "vs_store_check: no suitable memory type\n");
-    std::exit(2);
-}
 
 VkShaderModule shaderModule(VkDevice device, const uint32_t* code, size_t bytes) {
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -64,6 +49,7 @@ VkShaderModule shaderModule(VkDevice device, const uint32_t* code, size_t bytes)
 } // namespace
 
 int main(int argc, char** argv) {
+    minimal::program = "vs_store_check";
     uint32_t first = 1, last = 96;
     if (argc == 3) {
         first = uint32_t(std::strtoul(argv[1], nullptr, 10));
@@ -105,37 +91,13 @@ int main(int argc, char** argv) {
         }
     }
 
-    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-    app.apiVersion = VK_API_VERSION_1_3;
-    VkInstanceCreateInfo instanceInfo{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-    instanceInfo.pApplicationInfo = &app;
-    VkInstance instance;
-    check(vkCreateInstance(&instanceInfo, nullptr, &instance), "vkCreateInstance");
-    uint32_t gpuCount = 1;
-    VkPhysicalDevice gpu;
-    VkResult enumerated = vkEnumeratePhysicalDevices(instance, &gpuCount, &gpu);
-    if ((enumerated != VK_SUCCESS && enumerated != VK_INCOMPLETE) || gpuCount == 0) {
-        std::fprintf(stderr, "vs_store_check: no Vulkan device\n");
-        return 2;
-    }
-    VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(gpu, &props);
-
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    queueInfo.queueFamilyIndex = 0;
-    queueInfo.queueCount = 1;
-    queueInfo.pQueuePriorities = &priority;
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.dynamicRendering = VK_TRUE;
     f13.synchronization2 = VK_TRUE;
-    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f13};
-    deviceInfo.queueCreateInfoCount = 1;
-    deviceInfo.pQueueCreateInfos = &queueInfo;
-    VkDevice device;
-    check(vkCreateDevice(gpu, &deviceInfo, nullptr, &device), "vkCreateDevice");
-    VkQueue queue;
-    vkGetDeviceQueue(device, 0, 0, &queue);
+    minimal::Device vk = minimal::createDevice(&f13);
+    VkPhysicalDevice gpu = vk.gpu;
+    VkDevice device = vk.device;
+    VkQueue queue = vk.queue;
 
     // A 16 x 16 colour target.
     const VkFormat format = VK_FORMAT_R8G8B8A8_UNORM;
@@ -153,7 +115,7 @@ int main(int argc, char** argv) {
     vkGetImageMemoryRequirements(device, image, &req);
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = memoryType(gpu, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    alloc.memoryTypeIndex = minimal::memoryType(gpu, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     VkDeviceMemory memory;
     check(vkAllocateMemory(device, &alloc, nullptr, &memory), "vkAllocateMemory");
     check(vkBindImageMemory(device, image, memory, 0), "vkBindImageMemory");
@@ -281,11 +243,10 @@ int main(int argc, char** argv) {
     vkDestroyImageView(device, view, nullptr);
     vkDestroyImage(device, image, nullptr);
     vkFreeMemory(device, memory, nullptr);
-    vkDestroyDevice(device, nullptr);
-    vkDestroyInstance(instance, nullptr);
+    minimal::destroyDevice(vk);
     if (!cacheDir.empty())
         std::filesystem::remove_all(cacheDir);
     if (!std::getenv("VSC_WARMING"))
-        std::printf("vs_store_check: drew %u..%u vertices on %s\n", first, last, props.deviceName);
+        std::printf("vs_store_check: drew %u..%u vertices on %s\n", first, last, vk.props.deviceName);
     return 0;
 }
