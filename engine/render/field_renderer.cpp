@@ -717,7 +717,6 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
     std::memcpy(draws.data(), static_cast<const char*>(r.statsReadback.mapped()) + sizeof(s),
                 draws.size() * sizeof(gpu::GpuDrawIndexedCommand));
-    out.draws = draws;
     out.trianglesDrawn = r.terrainIndexCount / 3 + 1; // terrain and sky
     for (uint32_t m = 0; m < r.meshCount; ++m) {
         out.visiblePerMesh.push_back(draws[m].instanceCount);

@@ -171,9 +171,8 @@ struct FieldRenderer {
 struct FieldStats {
     uint32_t visibleInstances = 0;
     uint32_t testedInstances = 0;
-    uint64_t trianglesDrawn = 0;                   // instances + terrain + sky
-    std::vector<uint32_t> visiblePerMesh;          // per draw bucket; a crossfading instance counts in two
-    std::vector<gpu::GpuDrawIndexedCommand> draws; // the frame's indirect draws, as the cull pass left them
+    uint64_t trianglesDrawn = 0;          // instances + terrain + sky
+    std::vector<uint32_t> visiblePerMesh; // per draw bucket; a crossfading instance counts in two
 };
 
 // Every instance's `mesh` names a clump; its boundingRadius must hold every LOD of it as it moves.

@@ -199,7 +199,7 @@ std::vector<std::string> listDevices(const Context& context) {
 void createContext(Context& ctx, const ContextOptions& options) {
     ctx.validationEnabled = options.validation;
     ctx.validation = std::make_unique<ValidationCounter>();
-    // Before any Vulkan call: lavapipe reads its CPU settings once, when the loader loads it.
+    // Before any Vulkan call: lavapipe reads its settings and picks its shader cache when it loads.
     std::string workaround = applyLavapipeWorkarounds();
     if (options.verbose && !workaround.empty())
         std::fprintf(stderr, "meadow: %s\n", workaround.c_str());
