@@ -20,6 +20,8 @@ packages=(
   libbenchmark-dev
   # robustness: clang with libFuzzer and its sanitizer runtimes (scripts/fuzz.sh)
   clang libclang-rt-14-dev
+  # formatting: clang-format 14, the version .clang-format is checked with (scripts/format.sh)
+  clang-format
 )
 
 missing=()

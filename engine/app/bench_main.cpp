@@ -4,7 +4,7 @@
 // precompute stages (Embree, Eigen) nor the window or image libraries (GLFW, OpenImageIO).
 #include "app/commands.h"
 #include "core/error.h"
-#include "library.h"
+#include "pipeline/build_library.h"
 
 #include <cstdio>
 #include <exception>

@@ -2,7 +2,7 @@
 #include "app/commands.h"
 #include "app/session.h"
 #include "core/error.h"
-#include "core/library_file.h"
+#include "library/library_file.h"
 
 #include <cstdio>
 #include <fstream>
@@ -129,7 +129,7 @@ int runInspect(const Args& argv) {
                              {"stronglyConnected", g.stronglyConnected},
                              {"levelsStronglyConnected", levelsConnected == g.levelCount}}},
                            {"levels", levels}};
-        const ClumpLight& light = c.light;
+        const LibraryLight& light = c.light;
         clump["light"] = {{"shOrder", light.order},
                           {"bakedFrames", light.bakedFrames.size()},
                           {"model", "mean + displacement gradient"},
@@ -140,7 +140,7 @@ int runInspect(const Args& argv) {
                           {"ground",
                            {{"resolution", light.groundResolution},
                             {"size", light.groundSize},
-                            {"appearanceModes", light.ground.basis.cols()},
+                            {"appearanceModes", light.ground.modes},
                             {"appearanceRelError", light.ground.relativeErrorPerMode},
                             {"bakeNoise", light.groundNoise},
                             {"heldOutIrradianceRelError", light.groundHeldOutError},

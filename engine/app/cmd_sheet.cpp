@@ -2,7 +2,7 @@
 // can judge the motion library at a glance.
 #include "app/commands.h"
 #include "app/session.h"
-#include "clump_lod.h"
+#include "library/clump.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "render/offscreen.h"

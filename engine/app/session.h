@@ -3,11 +3,11 @@
 #pragma once
 
 #include "app/args.h"
-#include "library.h"
+#include "pipeline/build_library.h"
 #include "render/camera.h"
 #include "render/camera_path.h"
 #include "render/field_content.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "vk/context.h"
 
 namespace meadow {

@@ -108,8 +108,7 @@ std::vector<FieldClump> fieldClumps(const Library& library) {
         // The ground grid's mean transfer over the motion (its appearance modes, if any, are small:
         // the grid varies less than its bake noise, DESIGN 2.5).
         if (source.light.groundResolution >= 2) {
-            const Eigen::VectorXf& mean = source.light.ground.mean;
-            clump.groundTransfer.assign(mean.data(), mean.data() + mean.size());
+            clump.groundTransfer = source.light.ground.mean;
             clump.groundResolution = source.light.groundResolution;
             clump.groundSize = source.light.groundSize;
         }

@@ -2,7 +2,7 @@
 // instances, and the scenery (terrain, wind direction, LOD choice, sky).
 #pragma once
 
-#include "library.h"
+#include "library/library.h"
 #include "render/field_renderer.h"
 
 #include <vector>

@@ -9,9 +9,9 @@
 #include "vk/vk_check.h"
 
 #include "core/error.h"
-#include "light/sh.h"
+#include "library/sh.h"
 #include "render/cpu_driver.h"
-#include "sky/sun.h"
+#include "library/sky_day.h"
 
 #include <algorithm>
 #include <cmath>

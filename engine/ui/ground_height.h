@@ -4,7 +4,7 @@
 // whatever function made the mesh.
 #pragma once
 
-#include "mesh.h"
+#include "library/mesh.h"
 
 #include <optional>
 #include <vector>

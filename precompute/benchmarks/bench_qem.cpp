@@ -13,11 +13,11 @@
 // attribute widths (what the quadrics cost) are printed in the label.
 #include "fixtures.h"
 
-#include "clump_lod.h"
-#include "clump_motion.h"
+#include "pipeline/clump_lod.h"
+#include "pipeline/clump_motion.h"
 #include "light/vertex_appearance.h"
 #include "lod/lod.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "transfer/transfer.h"
 
 #include <algorithm>

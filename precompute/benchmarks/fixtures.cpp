@@ -1,6 +1,6 @@
 #include "fixtures.h"
 
-#include "iris.h"
+#include "plants/iris.h"
 
 #include <atomic>
 #include <cstdio>

@@ -3,7 +3,7 @@
 // clump docs/BENCHMARKS.md reports on) at the ci or full tessellation.
 #pragma once
 
-#include "plant.h"
+#include "plants/plant.h"
 
 #include <benchmark/benchmark.h>
 

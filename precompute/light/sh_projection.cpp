@@ -2,7 +2,7 @@
 // stratified Monte Carlo, and latitude-longitude images with exact pixel solid angles.
 #include "light/latlong.h"
 #include "light/sh.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <tbb/parallel_for.h>
 

@@ -15,6 +15,8 @@
 // the light pass projects T̄ and G onto the sky, a vertex's irradiance is one dot product with d.
 #pragma once
 
+#include "library/clump.h"
+
 #include <Eigen/Core>
 #include <glm/glm.hpp>
 
@@ -24,16 +26,6 @@
 
 namespace meadow {
 
-struct VertexAppearance {
-    uint32_t vertexCount = 0;
-    uint32_t valuesPerVertex = 0; // transfer values of one vertex (sides x channels x order^2)
-    // Per vertex, per value: (T̄, dT/dx, dT/dy, dT/dz), i.e. [vertex][value][4]; gradients per metre.
-    std::vector<float> coefficients;
-
-    const float* at(uint32_t vertex, uint32_t value) const {
-        return &coefficients[(size_t(vertex) * valuesPerVertex + value) * 4];
-    }
-};
 
 // baked: (vertexCount x valuesPerVertex) x S, column s the transfer at baked frame s, vertex-major;
 // displacements[s][v]: vertex v's displacement at baked frame s. The gradient is regularised

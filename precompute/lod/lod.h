@@ -18,7 +18,9 @@
 // any TBB thread count.
 #pragma once
 
-#include "motion/motion_basis.h" // kLodCount
+#include "library/clump.h"
+
+#include "library/motion_basis.h" // kLodCount
 
 #include <array>
 #include <cstdint>
@@ -169,25 +171,7 @@ struct LodErrorOptions {
     float samplesPerSquareMetre = 20000.0f;
 };
 
-// Distances between two surfaces sampled both ways (points of each to the nearest point of the
-// other), symmetric as in Metro (Cignoni et al. 1998): the larger of the two one-sided figures.
-// hausdorff: the largest sampled value; rms: the area-weighted root mean square. Metres.
-struct SurfaceDistance {
-    double hausdorff = 0.0;
-    double rms = 0.0;
-};
 
-struct LodError {
-    SurfaceDistance rest;
-    SurfaceDistance deformed; // Hausdorff: the largest over frames; RMS: over all frames
-    // |full - LOD| of the light scalar, each surface's value interpolated at a sample point and at
-    // its nearest point on the other surface (at rest). Units of the scalar; zero without one.
-    SurfaceDistance light;
-    // |displacement of the full surface - displacement of the LOD| at each sample and its nearest
-    // point on the other surface at rest, over all frames. Metres; zero without frames.
-    SurfaceDistance motion;
-    uint32_t fullSamples = 0, lodSamples = 0;
-};
 
 // `lodVertices`: original indices (MeshLod::vertices or SimplifiedMesh::keptVertices);
 // `lodIndices`: triangles into lodVertices.

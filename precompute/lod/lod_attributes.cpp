@@ -4,7 +4,7 @@
 
 #include "core/error.h"
 #include "light/vertex_appearance.h"
-#include "plant.h"
+#include "plants/plant.h"
 
 #include <cmath>
 #include <string>

@@ -33,7 +33,7 @@ namespace {
 
 constexpr size_t kGrain = 256;
 
-struct Mesh {
+struct TriangleSurface {
     std::span<const glm::vec3> positions;
     std::span<const uint32_t> indices;
 };
@@ -69,7 +69,7 @@ struct Accumulator {
 };
 
 // For each sample of `from`, the nearest point of `to`.
-std::vector<ClosestHit> nearest(const Mesh& from, const std::vector<SurfaceSample>& samples, const Mesh& to) {
+std::vector<ClosestHit> nearest(const TriangleSurface& from, const std::vector<SurfaceSample>& samples, const TriangleSurface& to) {
     const TriangleBvh bvh(to.positions, to.indices);
     std::vector<ClosestHit> hits(samples.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), kGrain), [&](const tbb::blocked_range<size_t>& r) {
@@ -143,7 +143,7 @@ LodError measureLodError(const LodErrorInput& full, std::span<const uint32_t> lo
     std::vector<glm::vec3> lodRest(lodVertices.size());
     for (size_t i = 0; i < lodVertices.size(); ++i)
         lodRest[i] = full.positions[lodVertices[i]];
-    const Mesh fullMesh{full.positions, full.indices}, lodMesh{lodRest, lodIndices};
+    const TriangleSurface fullMesh{full.positions, full.indices}, lodMesh{lodRest, lodIndices};
 
     const std::vector<SurfaceSample> fullSamples =
         sampleSurface(full.positions, full.indices, options.samplesPerSquareMetre);
@@ -188,7 +188,7 @@ LodError measureLodError(const LodErrorInput& full, std::span<const uint32_t> lo
     for (const std::vector<glm::vec3>& frame : full.frames) {
         for (size_t i = 0; i < lodVertices.size(); ++i)
             lodFrame[i] = frame[lodVertices[i]];
-        const Mesh fullNow{frame, full.indices}, lodNow{lodFrame, lodIndices};
+        const TriangleSurface fullNow{frame, full.indices}, lodNow{lodFrame, lodIndices};
         deformed.fullToLod.add(distances(nearest(fullNow, fullSamples, lodNow)), fullSamples);
         deformed.lodToFull.add(distances(nearest(lodNow, lodSamples, fullNow)), lodSamples);
 

@@ -14,7 +14,7 @@
 // simply fewer modes per block.
 #pragma once
 
-#include "motion/motion_basis.h"
+#include "library/motion_basis.h"
 #include "motion/pca.h"
 
 #include <Eigen/Core>

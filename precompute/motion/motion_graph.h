@@ -9,8 +9,8 @@
 // edge leads to them, so q needs no re-indexing and a blend partner may still show them.
 #pragma once
 
+#include "library/motion_graph.h"
 #include "motion/frame_distance.h"
-#include "motion_step.h"
 
 #include <Eigen/Core>
 
@@ -33,31 +33,6 @@ struct MotionGraphParams {
     float frameRate = 30.0f;                 // frames per second of the simulation
 };
 
-struct MotionGraph {
-    uint32_t nodeCount = 0;  // = frames of q
-    uint32_t levelCount = 0; // wind levels, 1 + the largest clip level
-    uint32_t edgeCount = 0;
-    uint32_t blendFrames = 0;
-    std::vector<uint8_t> nodeLevel;        // per node: its clip's wind level (0 where no clip covers it)
-    std::vector<uint8_t> nodeAlive;        // per node: 1 if it survived pruning (has edges, is reachable)
-    std::vector<uint32_t> naturalNext;     // per node: node + 1 inside its clip, else gpu::kMotionNoFrame
-    std::vector<uint32_t> edgeStart;       // CSR, nodeCount + 1: node i's edges are [edgeStart[i], edgeStart[i + 1])
-    std::vector<uint32_t> edgeTarget;      // per edge; a node's natural edge comes first, then by target
-    std::vector<uint8_t> edgeIsTransition; // per edge: 0 natural (i -> i + 1), 1 transition
-    std::vector<float> edgeDistance;       // per edge: D(i -> j) (0 for natural edges)
-    std::vector<float> edgeProbability;    // per edge: P ∝ exp(-D / sigma), summing to 1 over each live node
-    std::vector<float> futureCost;    // [level * nodeCount + node]: fewest frames until `level` plays; +inf if pruned
-    std::vector<uint32_t> edgeWeight; // [level * edgeCount + edge]: 0..65535, each live node's best edge 65535
-
-    bool stronglyConnected = false;                // the live graph as a whole
-    std::vector<uint8_t> levelStronglyConnected;   // per level: its live nodes with intra-level edges
-    uint32_t removedNodes = 0;                     // frames of clips dropped by pruning
-    uint32_t transitionCount = 0;                  // transition edges, all levels
-    uint32_t crossLevelTransitionCount = 0;        // of which join two levels
-    uint32_t forcedClipEndTransitions = 0;         // clip ends given their best same-level jump regardless of threshold
-    std::vector<uint32_t> crossLevelFallbackPairs; // (from, to) level pairs, flattened, that had too few
-                                                   // transitions below threshold and took the best local minima
-};
 
 // Builds the graph from reduced coordinates q (r x F, one column per frame) and the clips that
 // cut those frames into per-level simulations. Steps:
@@ -89,14 +64,5 @@ struct MotionGraph {
 MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionClip>& clips,
                              const MotionGraphParams& params);
 
-// The run-time tables as spans into graph (which must outlive the result).
-gpu::MotionTables makeMotionTables(const MotionGraph& graph);
-
-inline constexpr uint32_t kAnyLevel = 0xffffffffu;
-
-// An instance's starting state: a live frame drawn by the instance's hash (optionally only among
-// frames of `level`), no blend, counter 0. Each instance starts at its own frame (Cove & James
-// 2004, section 2) so a field of copies never moves in lock step.
-gpu::GpuMotionState initialMotionState(const MotionGraph& graph, uint32_t instanceSeed, uint32_t level = kAnyLevel);
 
 } // namespace meadow

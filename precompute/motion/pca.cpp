@@ -1,7 +1,7 @@
 #include "motion/pca.h"
 
 #include "core/error.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "placement/tile_fill.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <glm/glm.hpp>
 #include <string>

@@ -17,7 +17,7 @@
 
 #include "placement/instance.h"
 #include "placement/swept_volume.h"
-#include "placement/terrain.h"
+#include "library/terrain.h"
 #include "placement/tile_fill.h"
 #include "placement/wang_tiles.h"
 

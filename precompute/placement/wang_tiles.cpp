@@ -1,7 +1,7 @@
 #include "placement/wang_tiles.h"
 
 #include "core/error.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <string>
 

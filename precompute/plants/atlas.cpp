@@ -1,7 +1,7 @@
 #include "atlas.h"
 
 #include "core/error.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <OpenImageIO/imageio.h>
 #include <algorithm>

@@ -2,7 +2,7 @@
 
 #include "atlas.h"
 #include "core/error.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <algorithm>
 #include <cmath>

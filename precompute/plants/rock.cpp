@@ -1,7 +1,7 @@
 #include "rock.h"
 
 #include "core/error.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <algorithm>
 #include <cmath>

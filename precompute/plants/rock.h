@@ -16,6 +16,8 @@
 // depends only on the seed and i; the same inputs give identical bytes.
 #pragma once
 
+#include "library/field.h"
+
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
@@ -29,14 +31,6 @@ struct RockParams {
     float maxSize = 0.6f;
 };
 
-struct RockMesh {
-    std::string name;                 // "rock-<i>"
-    float size = 0.0f;                // max(x extent, z extent) of the mesh (m)
-    std::vector<glm::vec3> positions; // all with y >= 0; the cut rim exactly at y = 0
-    std::vector<glm::vec3> normals;   // unit, outward
-    std::vector<glm::vec2> uvs;       // top-down planar, in [0, 1]
-    std::vector<uint32_t> indices;    // triangle list, counter-clockwise seen from outside
-};
 
 // "ci" (2 subdivisions) or "full" (3). Throws meadow::Error for other names.
 RockParams rockParamsForPreset(const std::string& preset);

@@ -14,6 +14,8 @@
 //     equation of time are the caller's business.
 #pragma once
 
+#include "library/sky_day.h" // kSunAngularRadius
+
 #include <cmath>
 #include <glm/glm.hpp>
 
@@ -51,8 +53,7 @@ inline double elevation(const glm::dvec3& direction) {
     return std::asin(glm::clamp(direction.y, -1.0, 1.0));
 }
 
-// The sun's mean apparent angular radius (0.2666 degrees) and the solid angle of its disk (sr).
-inline constexpr double kSunAngularRadius = 0.2666 * M_PI / 180.0;
+// The solid angle of the sun's disk (sr), of radius kSunAngularRadius (library/sky_day.h).
 inline double sunSolidAngle() {
     return 2.0 * M_PI * (1.0 - std::cos(kSunAngularRadius));
 }

@@ -37,7 +37,7 @@
 #pragma once
 
 #include "light/sh.h"
-#include "plant.h"
+#include "plants/plant.h"
 
 #include <array>
 #include <cstdint>

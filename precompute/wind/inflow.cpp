@@ -2,7 +2,7 @@
 #include "inflow.h"
 
 #include "float4.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,8 +2,8 @@
 // loads must also hash (what the library cache names it by) when it names no outside files.
 #include "core/error.h"
 #include "fuzz_input.h"
-#include "library.h"
-#include "scene.h"
+#include "pipeline/build_library.h"
+#include "scene/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace meadow;

@@ -3,8 +3,8 @@
 // some 40 KB instead of 300 (the atlas is the one section whose size no scene key controls).
 //   meadow_fuzz_make_seed SCENE OUT
 #include "core/error.h"
-#include "core/library_file.h"
-#include "library.h"
+#include "library/library_file.h"
+#include "pipeline/build_library.h"
 
 #include <cstdio>
 

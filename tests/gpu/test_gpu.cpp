@@ -3,9 +3,10 @@
 // lavapipe vector widths (LP_NATIVE_VECTOR_WIDTH=128 and 256).
 #include "../motion/synthetic_motion.h"
 #include "core/error.h"
-#include "field_placement.h"
+#include "library/terrain.h"
+#include "motion/motion_graph.h"
 #include "light/sh.h"
-#include "mesh.h"
+#include "library/mesh.h"
 #include "render/cpu_driver.h"
 #include "render/cull_reference.h"
 #include "render/draw_ranges.h"

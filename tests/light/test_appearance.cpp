@@ -3,7 +3,7 @@
 #include "light/appearance.h"
 
 #include "core/error.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // lat-long images), zonal harmonics, convolution and irradiance.
 #include "light/latlong.h"
 #include "light/sh.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 #include "lod_fixtures.h"
 
-#include "iris.h"
+#include "plants/iris.h"
 
 #include <algorithm>
 #include <cmath>

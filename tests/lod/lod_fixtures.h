@@ -3,7 +3,7 @@
 #pragma once
 
 #include "lod/lod.h"
-#include "plant.h"
+#include "plants/plant.h"
 
 #include <glm/glm.hpp>
 

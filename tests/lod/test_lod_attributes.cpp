@@ -3,7 +3,7 @@
 
 #include "core/error.h"
 #include "light/vertex_appearance.h"
-#include "plant.h"
+#include "plants/plant.h"
 
 #include <gtest/gtest.h>
 

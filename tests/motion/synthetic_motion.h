@@ -5,7 +5,7 @@
 #pragma once
 
 #include "motion/frame_distance.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <Eigen/Core>
 

@@ -3,7 +3,7 @@
 #include "motion/block_pca.h"
 
 #include "core/error.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

@@ -1,7 +1,7 @@
 #include "motion/motion_graph.h"
 #include "motion_step.h"
 
-#include "random.h"
+#include "core/random.h"
 #include "synthetic_motion.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 #include "placement_fixtures.h"
 
 #include "core/error.h"
-#include "iris.h"
-#include "rock.h"
+#include "plants/iris.h"
+#include "plants/rock.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 
 #include "placement/swept_volume.h"
 #include "placement/tile_fill.h"
-#include "plant.h"
+#include "plants/plant.h"
 
 #include <functional>
 #include <glm/glm.hpp>

@@ -4,7 +4,7 @@
 #include "core/error.h"
 #include "placement/field.h"
 #include "placement_fixtures.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

@@ -6,7 +6,7 @@
 #include "placement/instance.h"
 #include "placement/occupancy_grid.h"
 #include "placement/swept_volume.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <gtest/gtest.h>
 

@@ -2,12 +2,12 @@
 // hit exactly the expected cells, thin slivers never slip through, dilation, solid fill, frame
 // selection, determinism and bad input.
 #include "core/error.h"
-#include "iris.h"
+#include "plants/iris.h"
 #include "placement/swept_volume.h"
 #include "placement/triangle_box.h"
 #include "placement_fixtures.h"
-#include "random.h"
-#include "rock.h"
+#include "core/random.h"
+#include "plants/rock.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

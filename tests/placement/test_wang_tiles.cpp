@@ -2,7 +2,7 @@
 // stochastic scan-line tiling, and the direct hash tiling for unbounded fields.
 #include "core/error.h"
 #include "placement/wang_tiles.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The iris texture atlas (precompute/plants/atlas.h): determinism, layout, colours, and the
 // round trip through OpenImageIO.
-#include "atlas.h"
+#include "plants/atlas.h"
 #include "core/error.h"
 
 #include <OpenImageIO/imageio.h>

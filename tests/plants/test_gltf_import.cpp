@@ -1,7 +1,7 @@
 // glTF import (precompute/plants/gltf_import.h): the valid asset becomes a one-rod plant, each
 // kind of unusable asset is refused with a message naming the file and the problem.
 #include "core/error.h"
-#include "gltf_import.h"
+#include "plants/gltf_import.h"
 
 #include <cstring>
 #include <fstream>

@@ -1,8 +1,8 @@
 // Procedural iris clumps (precompute/plants/iris.h): determinism, plant anatomy, mesh validity,
 // skinning and the triangle budget of each preset.
-#include "atlas.h"
+#include "plants/atlas.h"
 #include "core/error.h"
-#include "iris.h"
+#include "plants/iris.h"
 
 #include <algorithm>
 #include <cmath>

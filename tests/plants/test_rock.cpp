@@ -1,7 +1,7 @@
 // Procedural rocks (precompute/plants/rock.h): determinism, size, the cut at the ground,
 // watertightness above ground, and unit outward normals.
 #include "core/error.h"
-#include "rock.h"
+#include "plants/rock.h"
 
 #include <cmath>
 #include <cstring>

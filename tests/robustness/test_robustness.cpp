@@ -3,9 +3,9 @@
 // easily; the memory check's arithmetic. The bad-input corpus itself runs through the command
 // line (corpus.cmake), the fuzzers in tests/fuzz.
 #include "core/error.h"
-#include "core/library_file.h"
-#include "library.h"
-#include "motion/motion_basis.h"
+#include "library/library_file.h"
+#include "pipeline/build_library.h"
+#include "library/motion_basis.h"
 #include "plants/gltf_import.h"
 #include "vk/memory_budget.h"
 

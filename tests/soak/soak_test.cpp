@@ -15,7 +15,7 @@
 // cores.
 //   meadow_soak_test [FRAMES]     (default 3000; the scene comes from MEADOW_SOURCE_DIR)
 #include "core/error.h"
-#include "library.h"
+#include "pipeline/build_library.h"
 #include "render/field_content.h"
 #include "render/offscreen.h"
 #include "render/render_targets.h"

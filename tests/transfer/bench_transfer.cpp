@@ -7,7 +7,7 @@
 // Each frame sways the clump (a bend growing with height, as the wind does) so the Embree scene is
 // rebuilt every frame, as in the real bake. Prints one line per frame and a summary: seconds per
 // frame (median), vertex rays per second of the ray-casting stage and of the whole frame.
-#include "iris.h"
+#include "plants/iris.h"
 #include "transfer/transfer.h"
 
 #include <tbb/global_control.h>

@@ -1,7 +1,7 @@
 // Small meshes with known answers for the transfer bake's tests, and the helpers they share.
 #pragma once
 
-#include "iris.h"
+#include "plants/iris.h"
 #include "light/sh.h"
 #include "transfer/transfer.h"
 

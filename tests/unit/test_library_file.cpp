@@ -1,6 +1,6 @@
 #include "core/error.h"
-#include "core/library_file.h"
-#include "library.h"
+#include "library/library_file.h"
+#include "pipeline/build_library.h"
 
 #include <filesystem>
 #include <fstream>
@@ -181,13 +181,13 @@ TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
     EXPECT_EQ(lib.sky.frames[0].image.size(), size_t(lib.sky.imageWidth) * lib.sky.imageHeight * 3);
     // Light: transfer of both sides of every vertex, RGB, order 3, with its displacement gradient;
     // the ground grid with coordinates for every frame; held-out errors measured.
-    const ClumpLight& light = clump.light;
+    const LibraryLight& light = clump.light;
     EXPECT_EQ(light.order, 3);
     EXPECT_EQ(light.vertices.vertexCount, clump.mesh.vertices.size());
     EXPECT_EQ(light.vertices.valuesPerVertex, 2u * 3u * 9u);
     EXPECT_GE(light.bakedFrames.size(), 4u);
     EXPECT_GT(light.groundResolution, 1u);
-    EXPECT_EQ(light.ground.coords.cols(), Eigen::Index(clump.motion.frames));
+    EXPECT_EQ(light.ground.frames, clump.motion.frames);
     EXPECT_GT(light.vertexNoise, 0.0);
     EXPECT_GT(light.vertexHeldOutError, 0.0);
     EXPECT_LT(light.vertexHeldOutError, 0.5);

@@ -1,5 +1,5 @@
 #include "core/error.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 #include <filesystem>
 #include <fstream>

@@ -7,7 +7,7 @@
 #include "sh_light.h"
 
 #include "light/sh.h"
-#include "random.h"
+#include "core/random.h"
 
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>

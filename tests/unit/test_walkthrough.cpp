@@ -1,7 +1,7 @@
 // The walkthrough's CPU side: the fly and walk camera stepped by input frames, the ground height
 // under the eye, the scripted input format and the keyboard shortcuts.
 #include "core/error.h"
-#include "field_placement.h"
+#include "library/terrain.h"
 #include "ui/fly_camera.h"
 #include "ui/ground_height.h"
 #include "ui/input_script.h"

@@ -1,6 +1,6 @@
 // Tests of the wind solver (precompute/wind/fluid.h). Each float comparison states its tolerance
 // and why. Step size 1/30 s is the coarsest the simulation uses (30 Hz output).
-#include "fluid.h"
+#include "wind/fluid.h"
 
 #include "core/error.h"
 

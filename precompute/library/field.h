@@ -1,0 +1,61 @@
+// The field as the library keeps it: the clumps' instances (Library::field), the rocks with their
+// static light transfer and instances, the terrain and the figures of the placement that made
+// them (placement/, pipeline/field_placement.h).
+#pragma once
+
+#include "gpu_types.h"
+#include "library/terrain.h"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+namespace meadow {
+
+// What the placement did (placement/, pipeline/field_placement.h), as `meadow inspect` reports it.
+struct PlacementStats {
+    uint32_t tiles = 0;                  // tiles filled (the complete set)
+    std::vector<uint32_t> clumpsPerTile; // per tile of the set
+    std::vector<uint32_t> rocksPerTile;
+    double densityVsPoissonDisc = 0.0; // voxel-tested clumps per area over disc-tested ones
+    uint32_t overlapViolations = 0;    // over every tile and neighbour offset (must be 0)
+    uint32_t tilesX = 0, tilesY = 0;
+    float tileSize = 0.0f;
+    uint32_t overlaps3dFound = 0; // pairs that met once placed on the terrain
+    uint32_t clumpsRemoved3d = 0, rocksRemoved3d = 0;
+    uint32_t overlapViolations3d = 0;        // left in the final field (must be 0)
+    std::vector<float> sweptFootprintRadius; // per clump, m
+};
+
+// A rock's mesh (plants/rock.h makes them).
+struct RockMesh {
+    std::string name;                 // "rock-<i>"
+    float size = 0.0f;                // max(x extent, z extent) of the mesh (m)
+    std::vector<glm::vec3> positions; // all with y >= 0; the cut rim exactly at y = 0
+    std::vector<glm::vec3> normals;   // unit, outward
+    std::vector<glm::vec2> uvs;       // top-down planar, in [0, 1]
+    std::vector<uint32_t> indices;    // triangle list, counter-clockwise seen from outside
+};
+
+// A rock as the library keeps it: the mesh, and its transfer (static: one bake, no gradient) and
+// that of the ground around it, in transfer/transfer.h's layouts.
+struct LibraryRock {
+    RockMesh mesh;
+    int order = 0;
+    std::vector<float> transfer; // vertices x 2 sides x 3 channels x order^2
+    uint32_t groundResolution = 0;
+    float groundSize = 0.0f;
+    std::vector<float> groundTransfer; // resolution^2 points x 3 channels x order^2
+};
+
+// The field besides its clump instances.
+struct LibraryField {
+    TerrainParams terrain;
+    glm::vec2 windDirection{1.0f, 0.0f}; // (x, z) unit: mirrored instances reflect about its vertical plane
+    PlacementStats stats;
+    std::vector<LibraryRock> rocks;
+    std::vector<gpu::GpuInstance> rockInstances; // mesh names the rock
+};
+
+} // namespace meadow
