@@ -2,7 +2,7 @@
 # Bundles the bench runner (meadow-bench, engine/app/bench_main.cpp) with everything it needs to
 # benchmark the default scene on a machine that has a Vulkan GPU driver but not meadow's Debian
 # packages: the binary (stripped), the shared libraries it links besides the C library (the Vulkan
-# loader, TBB, meshoptimizer, the C++ runtime), the scene, its precomputed library, the camera
+# loader, TBB, the C++ runtime), the scene, its precomputed library, the camera
 # paths, and two scripts:
 #   run.sh [meadow-bench options]   the bench runner on the bundled scene and library, e.g.
 #                                   run.sh --clumps 1000000 --size 1920x1080 --json out.json

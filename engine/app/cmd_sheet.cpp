@@ -2,9 +2,9 @@
 // can judge the motion library at a glance.
 #include "app/commands.h"
 #include "app/session.h"
-#include "library/clump.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "library/clump.h"
 #include "render/offscreen.h"
 
 #include <algorithm>

@@ -3,51 +3,8 @@
 #include "core/error.h"
 
 #include <algorithm>
-#include <meshoptimizer.h>
 
 namespace meadow {
-namespace {
-
-// A rock's levels of detail: meshoptimizer's edge-collapse simplifier at the plants' triangle
-// fractions (scene lod.triangleFractions' defaults), the rim on the ground locked so it stays
-// closed against the terrain, stopping at 5 % of the rock's size so a far rock keeps its bulk;
-// each LOD ordered for the vertex cache.
-std::vector<FieldLod> rockLods(const Mesh& mesh) {
-    const float fractions[kLodCount] = {1.0f, 1.0f / 3.0f, 1.0f / 10.0f, 1.0f / 20.0f, 1.0f / 30.0f};
-    std::vector<float> positions;
-    for (const gpu::GpuVertex& v : mesh.vertices)
-        positions.insert(positions.end(), {v.positionU.x, v.positionU.y, v.positionU.z});
-    std::vector<FieldLod> lods;
-    std::vector<uint32_t> previous = mesh.indices;
-    for (uint32_t l = 0; l < kLodCount; ++l) {
-        std::vector<uint32_t> indices = previous;
-        if (l > 0) {
-            const size_t target = std::max<size_t>(3, size_t(float(mesh.indices.size() / 3) * fractions[l]) * 3);
-            indices.resize(previous.size());
-            indices.resize(meshopt_simplify(indices.data(), previous.data(), previous.size(), positions.data(),
-                                            mesh.vertices.size(), 3 * sizeof(float), target, 0.05f,
-                                            meshopt_SimplifyLockBorder, nullptr));
-            if (indices.empty())
-                indices = previous;
-        }
-        previous = indices;
-        meshopt_optimizeVertexCache(indices.data(), indices.data(), indices.size(), mesh.vertices.size());
-        // The LOD's own vertices in first-use order, and its triangles over them.
-        FieldLod lod;
-        std::vector<uint32_t> local(mesh.vertices.size(), UINT32_MAX);
-        for (uint32_t i : indices) {
-            if (local[i] == UINT32_MAX) {
-                local[i] = uint32_t(lod.vertices.size());
-                lod.vertices.push_back(i);
-            }
-            lod.indices.push_back(local[i]);
-        }
-        lods.push_back(std::move(lod));
-    }
-    return lods;
-}
-
-} // namespace
 
 FieldScenery fieldScenery(const Library& library) {
     const PlacementStats& stats = library.placement.stats;
@@ -115,7 +72,7 @@ std::vector<FieldClump> fieldClumps(const Library& library) {
         clumps.push_back(std::move(clump));
     }
     // Rocks: static, lit by their baked transfer (no gradient), turned to any yaw (8 light bins),
-    // simplified at load (milliseconds) into five LODs.
+    // with the library's five LODs.
     for (const LibraryRock& rock : library.placement.rocks) {
         Mesh mesh;
         for (size_t v = 0; v < rock.mesh.positions.size(); ++v)
@@ -123,13 +80,15 @@ std::vector<FieldClump> fieldClumps(const Library& library) {
                                      glm::vec4(rock.mesh.normals[v], rock.mesh.uvs[v].y)});
         mesh.indices = rock.mesh.indices;
         FieldClump clump = staticFieldClump(mesh, kLodCount);
-        clump.lods = rockLods(mesh);
+        clump.lods.clear();
+        for (const RockLod& lod : rock.lods)
+            clump.lods.push_back({lod.vertices, lod.indices});
         if (rock.order != 3 || rock.transfer.size() != rock.mesh.positions.size() * 54)
             throw Error("library rock " + rock.mesh.name + ": its light transfer is not SH order 3 per vertex");
         clump.transfer.reserve(rock.transfer.size() * 4);
         for (float t : rock.transfer)
             clump.transfer.insert(clump.transfer.end(), {t, 0.0f, 0.0f, 0.0f});
-        clump.albedo = glm::vec4(0.30f, 0.28f, 0.25f, 1.0f); // as baked (library.cpp)
+        clump.albedo = glm::vec4(kRockAlbedo, 1.0f); // as baked (pipeline/rocks.cpp)
         if (rock.groundResolution >= 2) {
             clump.groundTransfer = rock.groundTransfer;
             clump.groundResolution = rock.groundResolution;

@@ -13,8 +13,8 @@ namespace meadow {
 // switch radii put each LOD's error (RMS distance over simulated frames) at about 0.3 pixels.
 FieldScenery fieldScenery(const Library& library);
 
-// The library's clumps (mean pose, LODs, motion, light transfer), then its rocks (static, their
-// LODs simplified at load), as the field renderer draws them. Deterministic.
+// The library's clumps (mean pose, LODs, motion, light transfer), then its rocks (static, with
+// their LODs), as the field renderer draws them. Deterministic.
 std::vector<FieldClump> fieldClumps(const Library& library);
 
 // The field's clump instances, then its rocks (their `mesh` after the clumps, as fieldClumps).

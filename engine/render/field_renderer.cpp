@@ -10,8 +10,8 @@
 
 #include "core/error.h"
 #include "library/sh.h"
-#include "render/cpu_driver.h"
 #include "library/sky_day.h"
+#include "render/cpu_driver.h"
 
 #include <algorithm>
 #include <cmath>

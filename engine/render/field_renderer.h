@@ -11,13 +11,13 @@
 
 #include "draw_instance.h"
 #include "gpu_types.h"
-#include "lod_select.h"
 #include "library/mesh.h"
 #include "library/motion_basis.h"
 #include "library/motion_graph.h"
+#include "library/sky_day.h"
+#include "lod_select.h"
 #include "render/camera.h"
 #include "render/render_targets.h"
-#include "library/sky_day.h"
 #include "vk/memory.h"
 #include "vk/pipeline.h"
 

@@ -13,10 +13,10 @@
 // attribute widths (what the quadrics cost) are printed in the label.
 #include "fixtures.h"
 
-#include "pipeline/clump_lod.h"
-#include "pipeline/clump_motion.h"
 #include "light/vertex_appearance.h"
 #include "lod/lod.h"
+#include "pipeline/clump_lod.h"
+#include "pipeline/clump_motion.h"
 #include "scene/scene.h"
 #include "transfer/transfer.h"
 

@@ -70,10 +70,10 @@ struct VertexAppearance {
 // The ground grid's transfer over the motion, a low-rank model (light/appearance.h builds it):
 // T(f) ≈ mean + basis coords(f).
 struct GroundAppearance {
-    std::vector<float> mean;  // n values
-    uint32_t modes = 0;       // r
-    std::vector<float> basis; // n x r, column-major (a mode's values contiguous)
-    uint32_t frames = 0;      // F, every motion frame
+    std::vector<float> mean;   // n values
+    uint32_t modes = 0;        // r
+    std::vector<float> basis;  // n x r, column-major (a mode's values contiguous)
+    uint32_t frames = 0;       // F, every motion frame
     std::vector<float> coords; // r x F, column-major (a frame's coordinates contiguous)
     std::vector<uint32_t> bakedFrames;
     std::vector<double> relativeErrorPerMode; // [k]: the error with k modes

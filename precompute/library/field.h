@@ -4,8 +4,10 @@
 #pragma once
 
 #include "gpu_types.h"
+#include "library/motion_basis.h"
 #include "library/terrain.h"
 
+#include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
@@ -38,10 +40,20 @@ struct RockMesh {
     std::vector<uint32_t> indices;    // triangle list, counter-clockwise seen from outside
 };
 
-// A rock as the library keeps it: the mesh, and its transfer (static: one bake, no gradient) and
-// that of the ground around it, in transfer/transfer.h's layouts.
+// The rocks' linear albedo, the same for every rock: the bake's and the renderer's.
+inline constexpr glm::vec3 kRockAlbedo{0.30f, 0.28f, 0.25f};
+
+// A rock's level of detail: a subset of its vertices and triangles over them.
+struct RockLod {
+    std::vector<uint32_t> vertices; // the rock's vertex indices, in first-use order
+    std::vector<uint32_t> indices;  // triangles into `vertices`
+};
+
+// A rock as the library keeps it: the mesh, its levels of detail, and its transfer (static: one
+// bake, no gradient) and that of the ground around it, in transfer/transfer.h's layouts.
 struct LibraryRock {
     RockMesh mesh;
+    std::array<RockLod, kLodCount> lods; // LOD 0 the whole mesh, ordered for the vertex cache
     int order = 0;
     std::vector<float> transfer; // vertices x 2 sides x 3 channels x order^2
     uint32_t groundResolution = 0;

@@ -14,10 +14,14 @@ struct SectionCodec {
 
 // In reading order: a section's reader may rely on those before it (the clumps first).
 constexpr SectionCodec kSections[] = {
-    {"SCNE", writeSceneSection, readSceneSection},         {"ATLS", writeAtlasSection, readAtlasSection},
-    {"CLMP", writeClumpSection, readClumpSection},         {"LITE", writeLightSection, readLightSection},
-    {"LODS", writeLodSection, readLodSection},             {"SKYD", writeSkySection, readSkySection},
-    {"TFLD", writeInstanceSection, readInstanceSection},   {"ROCK", writeRockSection, readRockSection},
+    {"SCNE", writeSceneSection, readSceneSection},
+    {"ATLS", writeAtlasSection, readAtlasSection},
+    {"CLMP", writeClumpSection, readClumpSection},
+    {"LITE", writeLightSection, readLightSection},
+    {"LODS", writeLodSection, readLodSection},
+    {"SKYD", writeSkySection, readSkySection},
+    {"TFLD", writeInstanceSection, readInstanceSection},
+    {"ROCK", writeRockSection, readRockSection},
     {"PLCE", writePlacementSection, readPlacementSection},
 };
 

@@ -27,7 +27,7 @@ void writeAppearance(ByteWriter& w, const GroundAppearance& m) {
 }
 
 GroundAppearance readAppearance(ByteReader& r, size_t values, uint32_t frames,
-                                      const std::function<Error(const std::string&)>& fail) {
+                                const std::function<Error(const std::string&)>& fail) {
     GroundAppearance m;
     std::vector<float> mean = r.f32s();
     const uint32_t modes = r.u32();

@@ -51,6 +51,10 @@ void writeRockSection(ByteWriter& w, const Library& library) {
             uvs.insert(uvs.end(), {uv.x, uv.y});
         w.f32s(uvs);
         w.u32s(rock.mesh.indices);
+        for (const RockLod& lod : rock.lods) {
+            w.u32s(lod.vertices);
+            w.u32s(lod.indices);
+        }
         w.u32(uint32_t(rock.order));
         w.f16s(rock.transfer);
         w.u32(rock.groundResolution);
@@ -81,6 +85,20 @@ void readRockSection(ByteReader& r, const std::string& where, Library& library) 
         for (uint32_t index : rock.mesh.indices)
             if (index >= vertices)
                 throw Error(what + ": a triangle index is out of range");
+        for (uint32_t l = 0; l < kLodCount; ++l) {
+            RockLod& lod = rock.lods[l];
+            lod.vertices = r.u32s();
+            lod.indices = r.u32s();
+            const std::string which = what + ": LOD " + std::to_string(l);
+            if (lod.vertices.empty() || lod.indices.empty() || lod.indices.size() % 3 != 0)
+                throw Error(which + " is empty or not a triangle list");
+            for (uint32_t v : lod.vertices)
+                if (v >= vertices)
+                    throw Error(which + " names vertex " + std::to_string(v) + " of " + std::to_string(vertices));
+            for (uint32_t i : lod.indices)
+                if (i >= lod.vertices.size())
+                    throw Error(which + " has a triangle index out of range");
+        }
         rock.order = int(r.u32());
         if (rock.order < 1 || rock.order > sh::kMaxOrder)
             throw Error(what + ": SH order " + std::to_string(rock.order) + " is out of range");

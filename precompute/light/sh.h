@@ -12,7 +12,6 @@
 
 namespace meadow::sh {
 
-
 // ---------------------------------------------------------------------------------------------
 // Evaluation of a coefficient vector (sh_zonal.cpp)
 

@@ -1,8 +1,8 @@
 // Projection of functions and images onto the SH basis: Gauss–Legendre product quadrature,
 // stratified Monte Carlo, and latitude-longitude images with exact pixel solid angles.
+#include "core/random.h"
 #include "light/latlong.h"
 #include "light/sh.h"
-#include "core/random.h"
 
 #include <tbb/parallel_for.h>
 

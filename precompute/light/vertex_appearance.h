@@ -26,7 +26,6 @@
 
 namespace meadow {
 
-
 // baked: (vertexCount x valuesPerVertex) x S, column s the transfer at baked frame s, vertex-major;
 // displacements[s][v]: vertex v's displacement at baked frame s. The gradient is regularised
 // (ridge) so that displacements varying by less than `ridgeMetres` carry no information: a vertex

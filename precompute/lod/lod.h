@@ -171,8 +171,6 @@ struct LodErrorOptions {
     float samplesPerSquareMetre = 20000.0f;
 };
 
-
-
 // `lodVertices`: original indices (MeshLod::vertices or SimplifiedMesh::keptVertices);
 // `lodIndices`: triangles into lodVertices.
 LodError measureLodError(const LodErrorInput& full, std::span<const uint32_t> lodVertices,

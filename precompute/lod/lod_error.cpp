@@ -69,7 +69,8 @@ struct Accumulator {
 };
 
 // For each sample of `from`, the nearest point of `to`.
-std::vector<ClosestHit> nearest(const TriangleSurface& from, const std::vector<SurfaceSample>& samples, const TriangleSurface& to) {
+std::vector<ClosestHit> nearest(const TriangleSurface& from, const std::vector<SurfaceSample>& samples,
+                                const TriangleSurface& to) {
     const TriangleBvh bvh(to.positions, to.indices);
     std::vector<ClosestHit> hits(samples.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), kGrain), [&](const tbb::blocked_range<size_t>& r) {

@@ -401,5 +401,4 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
     return g;
 }
 
-
 } // namespace meadow

@@ -33,7 +33,6 @@ struct MotionGraphParams {
     float frameRate = 30.0f;                 // frames per second of the simulation
 };
 
-
 // Builds the graph from reduced coordinates q (r x F, one column per frame) and the clips that
 // cut those frames into per-level simulations. Steps:
 //  1. D(i -> j) over a window of q and dq/dt (frame_distance.h).
@@ -63,6 +62,5 @@ struct MotionGraphParams {
 // meadow::Error on bad input (clips, parameters) or if pruning empties a level.
 MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionClip>& clips,
                              const MotionGraphParams& params);
-
 
 } // namespace meadow

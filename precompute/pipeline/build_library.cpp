@@ -7,6 +7,7 @@
 #include "pipeline/clump_lod.h"
 #include "pipeline/clump_motion.h"
 #include "pipeline/field_placement.h"
+#include "pipeline/rocks.h"
 #include "plants/atlas.h"
 #include "plants/gltf_import.h"
 #include "plants/iris.h"
@@ -108,7 +109,8 @@ Library buildLibrary(const Scene& scene, bool quiet) {
     const std::vector<float> testSky = sky::buildSkyFrame(scene.sky.params, 12.0).sh;
     std::vector<ClumpLight> lights(motions.size());
     tbb::parallel_for(size_t(0), motions.size(), [&](size_t i) {
-        lights[i] = buildClumpLight(motions[i], meshes[i], vertexAlbedo(meshes[i], library.atlas), scene.light, testSky);
+        lights[i] =
+            buildClumpLight(motions[i], meshes[i], vertexAlbedo(meshes[i], library.atlas), scene.light, testSky);
     });
     for (size_t i = 0; i < lights.size(); ++i) {
         const ClumpLight& l = lights[i];
@@ -151,28 +153,9 @@ Library buildLibrary(const Scene& scene, bool quiet) {
         fs.tilesX, fs.tilesY, double(fs.tileSize), placed.clumps.size(), placed.rocks.size(), fs.densityVsPoissonDisc,
         fs.overlaps3dFound, fs.clumpsRemoved3d, fs.rocksRemoved3d, fs.overlapViolations3d);
     library.field = placed.clumps;
-    {
-        // Rocks are static: one bake each, with the ground around them.
-        std::vector<LibraryRock> rocks;
-        for (const RockMesh& mesh : placed.rockMeshes) {
-            LibraryRock rock;
-            rock.mesh = mesh;
-            transfer::BakeSettings settings = scene.light.bake;
-            settings.groundGridSize = 2.0f * mesh.size;
-            const std::vector<glm::vec3> albedo(mesh.positions.size(), glm::vec3(0.30f, 0.28f, 0.25f));
-            const std::vector<float> translucency(mesh.positions.size(), 0.0f);
-            const transfer::ClumpTransfer t =
-                transfer::bakeTransfer({mesh.positions, mesh.normals, mesh.indices, albedo, translucency}, settings);
-            rock.order = t.vertices.order;
-            rock.transfer = t.vertices.coefficients;
-            rock.groundResolution = t.ground.resolution;
-            rock.groundSize = t.ground.size;
-            rock.groundTransfer = t.ground.coefficients;
-            rocks.push_back(std::move(rock));
-        }
-        library.placement.rocks = std::move(rocks);
-        library.placement.rockInstances = placed.rocks;
-    }
+    // Rocks are static: one bake each, with the ground around them, and five LODs.
+    library.placement.rocks = buildRocks(placed.rockMeshes, scene.light.bake);
+    library.placement.rockInstances = placed.rocks;
     library.placement.terrain = placed.terrain;
     library.placement.windDirection = glm::normalize(glm::vec2(scene.wind.direction.x, scene.wind.direction.z));
     library.placement.stats = placed.stats;

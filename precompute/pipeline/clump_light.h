@@ -6,10 +6,10 @@
 // renderer projects all of it onto the sky's SH once per sky change.
 #pragma once
 
-#include "pipeline/clump_motion.h"
+#include "library/mesh.h"
 #include "light/appearance.h"
 #include "light/vertex_appearance.h"
-#include "library/mesh.h"
+#include "pipeline/clump_motion.h"
 #include "scene/scene.h"
 #include "transfer/transfer.h"
 

@@ -6,16 +6,15 @@
 
 #include "library/clump.h"
 
+#include "library/mesh.h"
+#include "lod/lod.h"
 #include "pipeline/clump_light.h"
 #include "pipeline/clump_motion.h"
-#include "lod/lod.h"
-#include "library/mesh.h"
 #include "scene/scene.h"
 
 #include <array>
 
 namespace meadow {
-
 
 // What the simplifier weighs for a clump (lod/lod.h): the drawn mesh's positions, normals and UVs,
 // the rod each vertex follows, its LOD 0 motion rows in metres (weight 1) and its mean light
@@ -36,6 +35,5 @@ ClumpSimplifyData clumpSimplifyData(const ClumpMotion& motion, const Mesh& meanP
 // `meanPose` as drawn (clumpRenderMesh). Deterministic.
 std::array<ClumpLod, kLodCount> buildClumpLods(const ClumpMotion& motion, const ClumpLight& light, const Mesh& meanPose,
                                                const std::vector<float>& testSky, const LodParams& params);
-
 
 } // namespace meadow

@@ -15,7 +15,6 @@
 
 namespace meadow {
 
-
 struct ClumpMotion {
     PlantClump clump;                     // rest geometry and rods
     std::vector<glm::vec3> meanPositions; // per vertex: the PCA mean (x̄)

@@ -6,10 +6,10 @@
 
 #include "library/field.h"
 
-#include "pipeline/clump_motion.h"
 #include "gpu_types.h"
 #include "library/mesh.h"
 #include "library/terrain.h"
+#include "pipeline/clump_motion.h"
 #include "plants/rock.h"
 #include "scene/scene.h"
 
@@ -17,7 +17,6 @@
 #include <vector>
 
 namespace meadow {
-
 
 struct PlacedField {
     // GpuInstance::mesh names the clump (clumps) or the rock (rocks); positionScale.w is +1, or -1
@@ -28,7 +27,6 @@ struct PlacedField {
     TerrainParams terrain;
     PlacementStats stats;
 };
-
 
 // `meshes[i]` is clump i as drawn (clumpRenderMesh of motions[i]). Deterministic.
 PlacedField placeField(const Scene& scene, const std::vector<ClumpMotion>& motions, const std::vector<Mesh>& meshes);

@@ -3,8 +3,8 @@
 // same neighbour rules and budgets. Not part of the public API.
 #pragma once
 
-#include "placement/tile_fill.h"
 #include "core/random.h"
+#include "placement/tile_fill.h"
 
 #include <glm/glm.hpp>
 #include <string>

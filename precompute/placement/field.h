@@ -15,9 +15,9 @@
 // upright (their axis along +y) at the terrain's height under their origin.
 #pragma once
 
+#include "library/terrain.h"
 #include "placement/instance.h"
 #include "placement/swept_volume.h"
-#include "library/terrain.h"
 #include "placement/tile_fill.h"
 #include "placement/wang_tiles.h"
 

@@ -31,7 +31,6 @@ struct RockParams {
     float maxSize = 0.6f;
 };
 
-
 // "ci" (2 subdivisions) or "full" (3). Throws meadow::Error for other names.
 RockParams rockParamsForPreset(const std::string& preset);
 

@@ -40,7 +40,6 @@ SkyParams skyParamsForPreset(const std::string& preset);
 // is not 2:1 or is empty, an SH order outside 1..kMaxOrder.
 void validateSkyParams(const SkyParams& params);
 
-
 // One frame of the analytic sky at `hours` (local solar time). Deterministic. Preconditions:
 // validateSkyParams(params) passes.
 SkyFrame buildSkyFrame(const SkyParams& params, double hours);

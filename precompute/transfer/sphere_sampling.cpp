@@ -1,7 +1,7 @@
 #include "transfer/sphere_sampling.h"
 
-#include "light/sh.h"
 #include "core/random.h"
+#include "light/sh.h"
 #include "transfer/transfer.h"
 
 #include <cassert>

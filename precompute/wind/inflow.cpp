@@ -1,8 +1,8 @@
 // Ambient wind: profile, gusts and a synthetic turbulence tile (see inflow.h).
 #include "inflow.h"
 
-#include "float4.h"
 #include "core/random.h"
+#include "float4.h"
 
 #include <algorithm>
 #include <cmath>

@@ -15,7 +15,7 @@ needed="$(readelf -d "$build/engine/meadow-bench" | sed -n 's/.*(NEEDED).*\[\(.*
 echo "meadow-bench needs: $needed"
 for lib in $needed; do
   case "$lib" in
-    libvulkan.so.1|libtbb.so.*|libmeshoptimizer.so.*|libstdc++.so.*|libgcc_s.so.*|libm.so.*|libc.so.*) ;;
+    libvulkan.so.1|libtbb.so.*|libstdc++.so.*|libgcc_s.so.*|libm.so.*|libc.so.*) ;;
     *) fail "meadow-bench links $lib, which the bundle should not need" ;;
   esac
 done

@@ -8,9 +8,9 @@
 // the run-time step and evaluates its motion basis, as the renderer's CPU reference would, so an
 // inconsistency the loader let through shows as an out-of-bounds access under AddressSanitizer.
 #include "core/error.h"
-#include "library/library_file.h"
 #include "fuzz_input.h"
 #include "library/library.h"
+#include "library/library_file.h"
 
 #include <cstring>
 #include <vector>

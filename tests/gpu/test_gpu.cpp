@@ -3,10 +3,10 @@
 // lavapipe vector widths (LP_NATIVE_VECTOR_WIDTH=128 and 256).
 #include "../motion/synthetic_motion.h"
 #include "core/error.h"
-#include "library/terrain.h"
-#include "motion/motion_graph.h"
-#include "light/sh.h"
 #include "library/mesh.h"
+#include "library/terrain.h"
+#include "light/sh.h"
+#include "motion/motion_graph.h"
 #include "render/cpu_driver.h"
 #include "render/cull_reference.h"
 #include "render/draw_ranges.h"

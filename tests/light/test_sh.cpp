@@ -1,8 +1,8 @@
 // The SH module against the oracles of DESIGN.md 2.5: projection (quadrature, Monte Carlo,
 // lat-long images), zonal harmonics, convolution and irradiance.
+#include "core/random.h"
 #include "light/latlong.h"
 #include "light/sh.h"
-#include "core/random.h"
 
 #include <gtest/gtest.h>
 

@@ -11,8 +11,8 @@ namespace meadow {
 namespace {
 
 TEST(ShBasis, MatchesTheDocumentedOrder3Polynomials) {
-    const glm::dvec3 dirs[] = {glm::normalize(glm::dvec3(0.3, 0.8, -0.5)), {0, 1, 0}, {1, 0, 0},
-                               glm::normalize(glm::dvec3(-0.7, -0.2, 0.6))};
+    const glm::dvec3 dirs[] = {
+        glm::normalize(glm::dvec3(0.3, 0.8, -0.5)), {0, 1, 0}, {1, 0, 0}, glm::normalize(glm::dvec3(-0.7, -0.2, 0.6))};
     for (const glm::dvec3& d : dirs) {
         double y[9];
         sh::evaluate(3, d, y);

@@ -1,7 +1,7 @@
 // Rotation of SH coefficients (Ivanic and Ruedenberg recurrence, light/sh_rotation.cpp): rotating
 // coefficients equals projecting the rotated function, for every order up to kMaxOrder.
-#include "light/sh.h"
 #include "core/random.h"
+#include "light/sh.h"
 
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>

@@ -4,8 +4,8 @@
 // exactly but revisits similar states, and neighbouring levels overlap.
 #pragma once
 
-#include "motion/frame_distance.h"
 #include "core/random.h"
+#include "motion/frame_distance.h"
 
 #include <Eigen/Core>
 

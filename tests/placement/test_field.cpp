@@ -2,9 +2,9 @@
 // instance lists of a tiling on the terrain, the 3D overlap check and its resolution (verified by
 // brute force), determinism, the default 15 x 15 field's numbers and bad parameters.
 #include "core/error.h"
+#include "core/random.h"
 #include "placement/field.h"
 #include "placement_fixtures.h"
-#include "core/random.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

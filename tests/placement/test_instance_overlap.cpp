@@ -3,10 +3,10 @@
 // surfaces themselves (triangle intersection and densely sampled distances) and an all-pairs box
 // test: symmetric, never missing a contact, and no more than the cells make.
 #include "core/error.h"
+#include "core/random.h"
 #include "placement/instance.h"
 #include "placement/occupancy_grid.h"
 #include "placement/swept_volume.h"
-#include "core/random.h"
 
 #include <gtest/gtest.h>
 

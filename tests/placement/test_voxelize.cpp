@@ -2,11 +2,11 @@
 // hit exactly the expected cells, thin slivers never slip through, dilation, solid fill, frame
 // selection, determinism and bad input.
 #include "core/error.h"
-#include "plants/iris.h"
+#include "core/random.h"
 #include "placement/swept_volume.h"
 #include "placement/triangle_box.h"
 #include "placement_fixtures.h"
-#include "core/random.h"
+#include "plants/iris.h"
 #include "plants/rock.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // Wang tiles (precompute/placement/wang_tiles.h): the complete set and Cohen et al.'s 8, the
 // stochastic scan-line tiling, and the direct hash tiling for unbounded fields.
 #include "core/error.h"
-#include "placement/wang_tiles.h"
 #include "core/random.h"
+#include "placement/wang_tiles.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The iris texture atlas (precompute/plants/atlas.h): determinism, layout, colours, and the
 // round trip through OpenImageIO.
-#include "plants/atlas.h"
 #include "core/error.h"
+#include "plants/atlas.h"
 
 #include <OpenImageIO/imageio.h>
 #include <filesystem>

@@ -1,7 +1,7 @@
 // Procedural iris clumps (precompute/plants/iris.h): determinism, plant anatomy, mesh validity,
 // skinning and the triangle budget of each preset.
-#include "plants/atlas.h"
 #include "core/error.h"
+#include "plants/atlas.h"
 #include "plants/iris.h"
 
 #include <algorithm>

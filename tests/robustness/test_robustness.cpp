@@ -4,8 +4,8 @@
 // line (corpus.cmake), the fuzzers in tests/fuzz.
 #include "core/error.h"
 #include "library/library_file.h"
-#include "pipeline/build_library.h"
 #include "library/motion_basis.h"
+#include "pipeline/build_library.h"
 #include "plants/gltf_import.h"
 #include "vk/memory_budget.h"
 

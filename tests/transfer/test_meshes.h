@@ -1,8 +1,8 @@
 // Small meshes with known answers for the transfer bake's tests, and the helpers they share.
 #pragma once
 
-#include "plants/iris.h"
 #include "light/sh.h"
+#include "plants/iris.h"
 #include "transfer/transfer.h"
 
 #include <gtest/gtest.h>

@@ -47,7 +47,7 @@ TEST(LibraryFile, GoldenBytesPinTheFormat) {
     writeLibraryFile(p, lib);
     std::vector<uint8_t> bytes = readAll(p);
     ASSERT_EQ(bytes.size(), 32u + 32u + 2u);
-    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 3, 0, 0, 0, 1, 0, 0, 0};
+    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 4, 0, 0, 0, 1, 0, 0, 0};
     EXPECT_EQ(std::vector<uint8_t>(bytes.begin(), bytes.begin() + 16), std::vector<uint8_t>(header, header + 16));
     EXPECT_EQ(bytes[16], 0x08); // inputHash, little-endian
     EXPECT_EQ(bytes[23], 0x01);
@@ -154,6 +154,14 @@ TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
     EXPECT_EQ(lib.placement.stats.overlapViolations, 0u);
     EXPECT_EQ(lib.placement.stats.overlapViolations3d, 0u);
     EXPECT_EQ(lib.placement.rocks.size(), size_t(scene.field.rockVariants));
+    // Rocks: five LODs made in the precompute, LOD 0 the whole mesh, each far one no larger.
+    for (const LibraryRock& rock : lib.placement.rocks) {
+        EXPECT_EQ(rock.lods[0].indices.size(), rock.mesh.indices.size()) << rock.mesh.name;
+        EXPECT_EQ(rock.lods[0].vertices.size(), rock.mesh.positions.size()) << rock.mesh.name;
+        EXPECT_LT(rock.lods[kLodCount - 1].indices.size(), rock.mesh.indices.size()) << rock.mesh.name;
+        for (uint32_t l = 1; l < kLodCount; ++l)
+            EXPECT_LE(rock.lods[l].indices.size(), rock.lods[l - 1].indices.size()) << rock.mesh.name << " LOD " << l;
+    }
     const Terrain terrain(lib.placement.terrain);
     for (const gpu::GpuInstance& inst : lib.field) {
         EXPECT_NEAR(inst.positionScale.y, terrain.height(inst.positionScale.x, inst.positionScale.z), 1e-5f);

@@ -1,7 +1,7 @@
 // The motion graph of a real simulated clump (the tiny test scene, built once): strongly
 // connected, no dead end in 10^6 steps, and a fast response to a step in the wind level.
-#include "pipeline/build_library.h"
 #include "motion_step.h"
+#include "pipeline/build_library.h"
 
 #include <algorithm>
 #include <cstdio>

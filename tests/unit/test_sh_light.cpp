@@ -6,8 +6,8 @@
 // the azimuth formulas the header uses, so the tests check those formulas too.
 #include "sh_light.h"
 
-#include "light/sh.h"
 #include "core/random.h"
+#include "light/sh.h"
 
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
