@@ -65,7 +65,7 @@ int runBenchWith(const Args& argv, const BenchLibrarySource& source) {
     const Library library = source.libraryFor(scene);
     // The field with its rocks; --clumps tiles the clumps alone (the rocks are left out).
     const std::vector<gpu::GpuInstance> field =
-        clumpCount ? tileField(library.field, *clumpCount) : fieldInstances(library);
+        clumpCount ? tileField(library.field.clumpInstances, *clumpCount) : fieldInstances(library);
     const std::vector<FieldClump> clumps = fieldClumps(library);
     const FieldScenery scenery = fieldScenery(library);
 

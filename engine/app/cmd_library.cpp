@@ -148,9 +148,9 @@ int runInspect(const Args& argv) {
         j["clumps"].push_back(clump);
     }
     uint32_t plants = 0;
-    for (const gpu::GpuInstance& inst : lib.field)
+    for (const gpu::GpuInstance& inst : lib.field.clumpInstances)
         plants += lib.clumps[inst.mesh].plants;
-    const PlacementStats& ps = lib.placement.stats;
+    const PlacementStats& ps = lib.field.stats;
     j["tiles"] = {{"count", ps.tiles},
                   {"size", ps.tileSize},
                   {"clumpsPerTile", ps.clumpsPerTile},
@@ -158,18 +158,18 @@ int runInspect(const Args& argv) {
                   {"densityVsPoissonDisc", ps.densityVsPoissonDisc},
                   {"overlapViolations", ps.overlapViolations},
                   {"sweptFootprintRadius", ps.sweptFootprintRadius}};
-    j["field"] = {{"tilesX", ps.tilesX},
-                  {"tilesY", ps.tilesY},
-                  {"clumps", lib.field.size()},
-                  {"plants", plants},
-                  {"rocks", lib.placement.rockInstances.size()},
-                  {"rockVariants", lib.placement.rocks.size()},
-                  {"overlapsFound3d", ps.overlaps3dFound},
-                  {"clumpsRemoved3d", ps.clumpsRemoved3d},
-                  {"rocksRemoved3d", ps.rocksRemoved3d},
-                  {"overlapViolations3d", ps.overlapViolations3d},
-                  {"terrain",
-                   {{"amplitude", lib.placement.terrain.amplitude}, {"wavelength", lib.placement.terrain.wavelength}}}};
+    j["field"] = {
+        {"tilesX", ps.tilesX},
+        {"tilesY", ps.tilesY},
+        {"clumps", lib.field.clumpInstances.size()},
+        {"plants", plants},
+        {"rocks", lib.field.rockInstances.size()},
+        {"rockVariants", lib.field.rocks.size()},
+        {"overlapsFound3d", ps.overlaps3dFound},
+        {"clumpsRemoved3d", ps.clumpsRemoved3d},
+        {"rocksRemoved3d", ps.rocksRemoved3d},
+        {"overlapViolations3d", ps.overlapViolations3d},
+        {"terrain", {{"amplitude", lib.field.terrain.amplitude}, {"wavelength", lib.field.terrain.wavelength}}}};
     j["atlas"] = {{"width", lib.atlas.width}, {"height", lib.atlas.height}};
     j["sky"] = {{"frames", lib.sky.frames.size()},
                 {"source", lib.skyFromMaps ? "panoramas" : "analytic"},

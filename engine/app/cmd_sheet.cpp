@@ -72,7 +72,7 @@ int runSheet(const Args& argv) {
     one.boundingRadius = clump.mesh.boundingRadius * 1.5f; // room for the swaying
     one.tint = 0.5f;
     FieldScenery scenery{makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(2.0f), 2.0f, 0.5f),
-                         library.placement.windDirection};
+                         library.field.windDirection};
     scenery.sky = library.sky;
     // Side view: the wind blows across the picture, left to right.
     glm::vec3 wind = scene.wind.direction;

@@ -7,12 +7,11 @@
 namespace meadow {
 
 FieldScenery fieldScenery(const Library& library) {
-    const PlacementStats& stats = library.placement.stats;
+    const PlacementStats& stats = library.field.stats;
     const glm::vec2 half = 0.5f * stats.tileSize * glm::vec2(float(stats.tilesX), float(stats.tilesY));
     // 1 m spacing follows hills of tens of metres within millimetres; 20 m of margin ease them
     // into the plain.
-    FieldScenery scenery{makeTerrainMesh(library.placement.terrain, half, 20.0f, 1.0f),
-                         library.placement.windDirection};
+    FieldScenery scenery{makeTerrainMesh(library.field.terrain, half, 20.0f, 1.0f), library.field.windDirection};
     scenery.sky = library.sky;
     scenery.lodCount = kLodCount;
     gpu::GpuLodParams& p = scenery.lod;
@@ -25,7 +24,7 @@ FieldScenery fieldScenery(const Library& library) {
     // 5-10x the RMS) showed as a sparser field from ~10 m on (docs/BENCHMARKS.md).
     const float tolerancePixels = 0.3f;
     std::vector<float> radius(library.clumps.size(), 0.0f);
-    for (const gpu::GpuInstance& inst : library.field)
+    for (const gpu::GpuInstance& inst : library.field.clumpInstances)
         radius[inst.mesh] = std::max(radius[inst.mesh], inst.boundingRadius);
     for (uint32_t i = 0; i + 1 < kLodCount; ++i) {
         float r = 1e6f;
@@ -73,7 +72,7 @@ std::vector<FieldClump> fieldClumps(const Library& library) {
     }
     // Rocks: static, lit by their baked transfer (no gradient), turned to any yaw (8 light bins),
     // with the library's five LODs.
-    for (const LibraryRock& rock : library.placement.rocks) {
+    for (const LibraryRock& rock : library.field.rocks) {
         Mesh mesh;
         for (size_t v = 0; v < rock.mesh.positions.size(); ++v)
             mesh.vertices.push_back({glm::vec4(rock.mesh.positions[v], rock.mesh.uvs[v].x),
@@ -100,9 +99,9 @@ std::vector<FieldClump> fieldClumps(const Library& library) {
 }
 
 std::vector<gpu::GpuInstance> fieldInstances(const Library& library) {
-    std::vector<gpu::GpuInstance> instances = library.field;
+    std::vector<gpu::GpuInstance> instances = library.field.clumpInstances;
     const uint32_t firstRock = uint32_t(library.clumps.size());
-    for (gpu::GpuInstance rock : library.placement.rockInstances) {
+    for (gpu::GpuInstance rock : library.field.rockInstances) {
         rock.mesh += firstRock;
         instances.push_back(rock);
     }

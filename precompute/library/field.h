@@ -1,5 +1,5 @@
-// The field as the library keeps it: the clumps' instances (Library::field), the rocks with their
-// static light transfer and instances, the terrain and the figures of the placement that made
+// The field as the library keeps it: the clumps' instances, the rocks with their static light
+// transfer and instances, the terrain and the figures of the placement that made
 // them (placement/, pipeline/field_placement.h).
 #pragma once
 
@@ -61,8 +61,9 @@ struct LibraryRock {
     std::vector<float> groundTransfer; // resolution^2 points x 3 channels x order^2
 };
 
-// The field besides its clump instances.
+// The field: every instance of a clump or a rock on the terrain (docs/ARCHITECTURE.md).
 struct LibraryField {
+    std::vector<gpu::GpuInstance> clumpInstances; // mesh names the clump (Library::clumps)
     TerrainParams terrain;
     glm::vec2 windDirection{1.0f, 0.0f}; // (x, z) unit: mirrored instances reflect about its vertical plane
     PlacementStats stats;

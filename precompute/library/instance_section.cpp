@@ -46,11 +46,11 @@ std::vector<gpu::GpuInstance> readInstances(ByteReader& r, const std::string& wh
 }
 
 void writeInstanceSection(ByteWriter& w, const Library& library) {
-    writeInstances(w, library.field);
+    writeInstances(w, library.field.clumpInstances);
 }
 
 void readInstanceSection(ByteReader& r, const std::string& where, Library& library) {
-    library.field = readInstances(r, where, uint32_t(library.clumps.size()));
+    library.field.clumpInstances = readInstances(r, where, uint32_t(library.clumps.size()));
     r.expectEnd();
 }
 

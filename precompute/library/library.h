@@ -35,8 +35,7 @@ struct Library {
     nlohmann::json scene; // resolved scene (preset merged, effective seed)
     std::vector<LibraryClump> clumps;
     RgbaImage atlas;
-    std::vector<gpu::GpuInstance> field; // the clump instances
-    LibraryField placement;              // terrain, rocks, tiling figures
+    LibraryField field; // terrain, instances of clumps and rocks, rocks, placement figures
     sky::SkyDay sky;
     bool skyFromMaps = false; // a user's panoramas rather than the analytic sky
     // Read from the container, not written by writeLibrary:

@@ -7,9 +7,9 @@
 namespace meadow {
 
 void writePlacementSection(ByteWriter& w, const Library& library) {
-    const TerrainParams& terrain = library.placement.terrain;
-    const glm::vec2 windDirection = library.placement.windDirection;
-    const PlacementStats& s = library.placement.stats;
+    const TerrainParams& terrain = library.field.terrain;
+    const glm::vec2 windDirection = library.field.windDirection;
+    const PlacementStats& s = library.field.stats;
     w.f32(windDirection.x);
     w.f32(windDirection.y);
     w.f32(terrain.amplitude);
@@ -32,7 +32,7 @@ void writePlacementSection(ByteWriter& w, const Library& library) {
 }
 
 void readPlacementSection(ByteReader& r, const std::string& where, Library& library) {
-    LibraryField& field = library.placement;
+    LibraryField& field = library.field;
     field.windDirection.x = r.f32();
     field.windDirection.y = r.f32();
     TerrainParams& t = field.terrain;

@@ -40,8 +40,8 @@ bool allFinite(const std::vector<float>& v) {
 } // namespace
 
 void writeRockSection(ByteWriter& w, const Library& library) {
-    w.u32(uint32_t(library.placement.rocks.size()));
-    for (const LibraryRock& rock : library.placement.rocks) {
+    w.u32(uint32_t(library.field.rocks.size()));
+    for (const LibraryRock& rock : library.field.rocks) {
         w.string(rock.mesh.name);
         w.f32(rock.mesh.size);
         writeVec3s(w, rock.mesh.positions);
@@ -61,11 +61,11 @@ void writeRockSection(ByteWriter& w, const Library& library) {
         w.f32(rock.groundSize);
         w.f16s(rock.groundTransfer);
     }
-    writeInstances(w, library.placement.rockInstances);
+    writeInstances(w, library.field.rockInstances);
 }
 
 void readRockSection(ByteReader& r, const std::string& where, Library& library) {
-    LibraryField& field = library.placement;
+    LibraryField& field = library.field;
     const uint32_t count = r.u32();
     if (count > 64)
         throw Error(where + " holds " + std::to_string(count) + " rocks");

@@ -152,13 +152,13 @@ Library buildLibrary(const Scene& scene, bool quiet) {
         "on the terrain and were resolved (%u clumps, %u rocks removed), %u left",
         fs.tilesX, fs.tilesY, double(fs.tileSize), placed.clumps.size(), placed.rocks.size(), fs.densityVsPoissonDisc,
         fs.overlaps3dFound, fs.clumpsRemoved3d, fs.rocksRemoved3d, fs.overlapViolations3d);
-    library.field = placed.clumps;
+    library.field.clumpInstances = placed.clumps;
     // Rocks are static: one bake each, with the ground around them, and five LODs.
-    library.placement.rocks = buildRocks(placed.rockMeshes, scene.light.bake);
-    library.placement.rockInstances = placed.rocks;
-    library.placement.terrain = placed.terrain;
-    library.placement.windDirection = glm::normalize(glm::vec2(scene.wind.direction.x, scene.wind.direction.z));
-    library.placement.stats = placed.stats;
+    library.field.rocks = buildRocks(placed.rockMeshes, scene.light.bake);
+    library.field.rockInstances = placed.rocks;
+    library.field.terrain = placed.terrain;
+    library.field.windDirection = glm::normalize(glm::vec2(scene.wind.direction.x, scene.wind.direction.z));
+    library.field.stats = placed.stats;
     return library;
 }
 

@@ -1,4 +1,4 @@
-// libFuzzer target: the library loader (precompute/library.h loadLibrary, engine/core/
+// libFuzzer target: the library loader (precompute/library/library.h loadLibrary, precompute/library/
 // library_file.h). Random bytes would almost never get past the checksums, so before loading, the
 // target makes every checksum the input's table can reach right (the section checksums, then the
 // table's): the fuzzer then explores the sections' contents, which is where the loader's decoding
@@ -28,7 +28,7 @@ void store64(uint8_t* p, uint64_t v) {
         p[i] = uint8_t(v >> (8 * i));
 }
 
-// The container's layout (core/library_file.h): a 32-byte header, then 32-byte table entries.
+// The container's layout (library/library_file.h): a 32-byte header, then 32-byte table entries.
 void fixChecksums(std::vector<uint8_t>& file) {
     constexpr size_t kHeader = 32, kEntry = 32;
     if (file.size() < kHeader)
@@ -72,7 +72,7 @@ void use(const meadow::Library& library) {
             for (uint32_t index : lod.indices)
                 sink = sink + clump.mesh.vertices[lod.vertices[index]].positionU[0];
     }
-    for (const gpu::GpuInstance& instance : library.field)
+    for (const gpu::GpuInstance& instance : library.field.clumpInstances)
         sink = sink + library.clumps[instance.mesh].mesh.boundingRadius;
     (void)sink;
 }

@@ -1,4 +1,4 @@
-// libFuzzer target: the scene parser (precompute/scene.h loadScene), both presets. A scene that
+// libFuzzer target: the scene parser (precompute/scene/scene.h loadScene), both presets. A scene that
 // loads must also hash (what the library cache names it by) when it names no outside files.
 #include "core/error.h"
 #include "fuzz_input.h"

@@ -4,7 +4,7 @@
     mutate_library.py GOOD.mlib OUT_DIR CASE...     writes OUT_DIR/CASE.mlib for each CASE
     mutate_library.py --list                         prints the cases
 
-The container (engine/core/library_file.h), little-endian:
+The container (precompute/library/library_file.h), little-endian:
     header  "MEADOWLB", u32 formatVersion, u32 sectionCount, u64 inputHash, u64 tableChecksum
     table   sectionCount x {u32 tag, u32 reserved, u64 offset, u64 size, u64 checksum}
     payload sections, each on an 8-byte boundary; checksums are FNV-1a 64.
@@ -113,7 +113,7 @@ def clump_mesh_index_at(clmp):
 
 def clump_graph_arrays_at(clmp):
     """Offsets of the first clump's motion-graph nodeLevel (u8s) and naturalNext (u32s) arrays in
-    CLMP, past their counts (precompute/library.cpp writeClump)."""
+    CLMP, past their counts (precompute/library/clump_section.cpp)."""
     at = 4  # clump count
     u32 = lambda: struct.unpack_from("<I", clmp, at)[0]
     at += 4 + u32()  # name

@@ -149,21 +149,21 @@ TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
 
     Library lib = loadLibrary(a);
     // The field: voxel-packed Wang tiles, none overlapping, on the terrain.
-    EXPECT_GT(lib.field.size(), 4u);
-    EXPECT_EQ(lib.placement.stats.tilesX, scene.field.tilesX);
-    EXPECT_EQ(lib.placement.stats.overlapViolations, 0u);
-    EXPECT_EQ(lib.placement.stats.overlapViolations3d, 0u);
-    EXPECT_EQ(lib.placement.rocks.size(), size_t(scene.field.rockVariants));
+    EXPECT_GT(lib.field.clumpInstances.size(), 4u);
+    EXPECT_EQ(lib.field.stats.tilesX, scene.field.tilesX);
+    EXPECT_EQ(lib.field.stats.overlapViolations, 0u);
+    EXPECT_EQ(lib.field.stats.overlapViolations3d, 0u);
+    EXPECT_EQ(lib.field.rocks.size(), size_t(scene.field.rockVariants));
     // Rocks: five LODs made in the precompute, LOD 0 the whole mesh, each far one no larger.
-    for (const LibraryRock& rock : lib.placement.rocks) {
+    for (const LibraryRock& rock : lib.field.rocks) {
         EXPECT_EQ(rock.lods[0].indices.size(), rock.mesh.indices.size()) << rock.mesh.name;
         EXPECT_EQ(rock.lods[0].vertices.size(), rock.mesh.positions.size()) << rock.mesh.name;
         EXPECT_LT(rock.lods[kLodCount - 1].indices.size(), rock.mesh.indices.size()) << rock.mesh.name;
         for (uint32_t l = 1; l < kLodCount; ++l)
             EXPECT_LE(rock.lods[l].indices.size(), rock.lods[l - 1].indices.size()) << rock.mesh.name << " LOD " << l;
     }
-    const Terrain terrain(lib.placement.terrain);
-    for (const gpu::GpuInstance& inst : lib.field) {
+    const Terrain terrain(lib.field.terrain);
+    for (const gpu::GpuInstance& inst : lib.field.clumpInstances) {
         EXPECT_NEAR(inst.positionScale.y, terrain.height(inst.positionScale.x, inst.positionScale.z), 1e-5f);
         EXPECT_EQ(std::abs(inst.positionScale.w), 1.0f);
     }
@@ -224,7 +224,7 @@ TEST(Library, CorruptCacheIsRebuiltNotTrusted) {
     writeAll(path, bytes);
     EXPECT_THROW(loadLibrary(path), Error);
     Library second = ensureLibrary(scene, true);
-    EXPECT_EQ(second.field.size(), first.field.size());
+    EXPECT_EQ(second.field.clumpInstances.size(), first.field.clumpInstances.size());
     EXPECT_NO_THROW(loadLibrary(path)); // the cache was rewritten whole
     unsetenv("MEADOW_CACHE_DIR");
 }
