@@ -7,7 +7,7 @@
 # Environment: FUZZ_JOBS=N runs N fuzzing processes per target (longer runs on more cores).
 # What the fuzzers learn is kept in build-fuzz/fuzz/corpus/TARGET, so later runs go on from there.
 # A crash leaves its input in build-fuzz/fuzz/crashes/ and fails the script; once fixed, the input
-# goes into tests/fuzz/regressions/TARGET/, which every build replays (tests fuzz.replay_TARGET).
+# goes into tests/system/fuzz/regressions/TARGET/, which every build replays (tests fuzz.replay_TARGET).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$root/build-fuzz"
@@ -29,11 +29,11 @@ work="$build/fuzz"
 mkdir -p "$work/crashes"
 # The library fuzzer's seed: the micro scene's library with a 1 x 1 atlas (37 KB, every section).
 mkdir -p "$work/seeds/library"
-"$build/tests/fuzz/meadow_fuzz_make_seed" "$root/tests/robustness/micro.json" "$work/seeds/library/micro.mlib"
+"$build/tests/system/fuzz/meadow_fuzz_make_seed" "$root/tests/system/robustness/micro.json" "$work/seeds/library/micro.mlib"
 
 declare -A seeds=(
-  [scene]="$root/data/scenes $root/tests/data/scenes $root/tests/robustness/scenes"
-  [gltf]="$root/tests/data/gltf $root/tests/robustness/gltf"
+  [scene]="$root/data/scenes $root/tests/data/scenes $root/tests/system/robustness/scenes"
+  [gltf]="$root/tests/data/gltf $root/tests/system/robustness/gltf"
   [library]="$work/seeds/library"
 )
 declare -A max_len=([scene]=16384 [gltf]=16384 [library]=65536)
@@ -44,15 +44,15 @@ status=0
 for target in "${targets[@]}"; do
   corpus="$work/corpus/$target"
   mkdir -p "$corpus"
-  for dir in $root/tests/fuzz/regressions/$target; do [ -d "$dir" ] && cp -n "$dir"/* "$corpus"/ 2>/dev/null || true; done
+  for dir in $root/tests/system/fuzz/regressions/$target; do [ -d "$dir" ] && cp -n "$dir"/* "$corpus"/ 2>/dev/null || true; done
   echo "meadow: fuzzing $target for $seconds s ($jobs job(s))" >&2
   parallel=()
   [ "$jobs" -gt 1 ] && parallel=(-jobs="$jobs" -workers="$jobs")
   # The working directory holds nothing to read (each input is written to a scratch folder of its
   # process, fuzz_input.h). Inputs over 10 s, 2 GiB resident or a 1 GiB allocation count as crashes.
   # shellcheck disable=SC2086
-  if ! (cd "$work" && "$build/tests/fuzz/meadow_fuzz_$target" "$corpus" ${seeds[$target]} \
-          -dict="$root/tests/fuzz/$target.dict" -max_len="${max_len[$target]}" -max_total_time="$seconds" \
+  if ! (cd "$work" && "$build/tests/system/fuzz/meadow_fuzz_$target" "$corpus" ${seeds[$target]} \
+          -dict="$root/tests/system/fuzz/$target.dict" -max_len="${max_len[$target]}" -max_total_time="$seconds" \
           -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 \
           -artifact_prefix="$work/crashes/$target-" "${parallel[@]}" >"$work/$target.log" 2>&1); then
     status=1

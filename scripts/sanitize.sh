@@ -21,7 +21,7 @@ echo "meadow: sanitizer build ready after $(( $(date +%s) - start )) s" >&2
 # Leaks are reported at exit (LeakSanitizer); undefined behaviour stops at the first report.
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-export LSAN_OPTIONS="suppressions=$root/tests/robustness/lsan.supp:print_suppressions=0"
+export LSAN_OPTIONS="suppressions=$root/tests/system/robustness/lsan.supp:print_suppressions=0"
 
 cd "$build"
 ctest --output-on-failure --parallel "$(nproc)" -L "unit|corpus" "$@"

@@ -1,5 +1,5 @@
 // Driver faults meadow works around, each found, measured and reproduced (docs/ROBUSTNESS.md,
-// "lavapipe and the CPU it compiles for"; reproducers in tests/driver/).
+// "lavapipe and the CPU it compiles for"; reproducers in tests/system/driver/).
 //
 // lavapipe (Mesa 22.3, LLVM 15) compiles shaders for the CPU it finds, as modified by two
 // environment variables it reads once, when the driver loads: LP_NATIVE_VECTOR_WIDTH (128 or 256

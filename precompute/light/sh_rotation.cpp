@@ -7,7 +7,7 @@
 // the same basis. meadow's band 1 is (Y1-1, Y10, Y11) = 0.488603 (x, y, z) with no Condon–Shortley
 // phase, which is Ivanic and Ruedenberg's real basis (their (y, z, x) order) read in the rotated
 // frame (X, Y, Z) = (z, x, y) of sh.h; so band 1's matrix is the world rotation R itself, rows and
-// columns in (x, y, z) order. tests/light/test_sh.cpp checks every order against projection of
+// columns in (x, y, z) order. tests/precompute/light/test_sh.cpp checks every order against projection of
 // the rotated function.
 #include "light/sh.h"
 

@@ -62,7 +62,7 @@ struct SimplifyInput {
 };
 
 struct SimplifyOptions {
-    // Defaults chosen on the iris clumps of tests/lod: heavier normal or UV weights (0.02, 0.5)
+    // Defaults chosen on the iris clumps of tests/precompute/lod: heavier normal or UV weights (0.02, 0.5)
     // raised the geometric RMS error of LOD 1 by half for no gain in lighting error.
     float normalWeight = 0.01f;  // metres per unit of normal difference
     float uvWeight = 0.1f;       // metres per UV unit: a 1 % texture shift costs like 1 mm

@@ -36,7 +36,7 @@ struct FrameTables {
 // The sky's SH come from its analytic radiance, not from the small image: 24 Gauss–Legendre
 // nodes in cos(theta) over the upper hemisphere x 48 azimuths. Splitting the sphere at the
 // horizon keeps the rule from straddling the sky/ground jump, and the smooth Perez distribution
-// then converges to well below 0.1 % of c00 at order <= 8 (tests/sky compare it with the image).
+// then converges to well below 0.1 % of c00 at order <= 8 (tests/precompute/sky compare it with the image).
 constexpr int kUpperNodes = 24, kUpperAzimuths = 48;
 
 FrameTables makeTables(const SkyParams& params) {

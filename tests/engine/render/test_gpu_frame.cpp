@@ -1,0 +1,130 @@
+// A whole frame on a real device: timestamps around every pass, what the CPU uploads per frame,
+// and the CPU-driven comparison path against the GPU-driven one.
+// ctest runs these at two lavapipe vector widths (LP_NATIVE_VECTOR_WIDTH=128 and 256).
+#include "gpu_fixture.h"
+#include "library/mesh.h"
+#include "render/cpu_driver.h"
+#include "render/field_renderer.h"
+#include "render/offscreen.h"
+#include "sh_light.h"
+#include "vk/context.h"
+#include "vk/memory.h"
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/packing.hpp>
+#include <gtest/gtest.h>
+#include <random>
+
+using namespace meadow;
+using namespace meadow::test;
+
+TEST_F(Gpu, TimestampsBracketEveryPass) {
+    std::vector<gpu::GpuInstance> instances = scatter(1000, 3);
+    FieldRenderer renderer =
+        createFieldRenderer(*context, staticClumps(testMeshes()), instances, testAtlas(), testScenery());
+    Offscreen offscreen = createOffscreen(*context, {32, 32});
+    Camera camera;
+    FrameTimings t = renderOffscreenFrame(*context, renderer, offscreen, frameState(camera, 32, 32));
+    ASSERT_EQ(t.gpu.size(), 5u);
+    EXPECT_EQ(t.gpu[0].label, "animate");
+    EXPECT_EQ(t.gpu[1].label, "cull");
+    EXPECT_EQ(t.gpu[2].label, "light");
+    EXPECT_EQ(t.gpu[3].label, "draw");
+    EXPECT_EQ(t.gpu[4].label, "tonemap");
+    for (const PassTime& p : t.gpu) {
+        EXPECT_GE(p.milliseconds, 0.0) << p.label;
+        EXPECT_LT(p.milliseconds, 10000.0) << p.label;
+    }
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
+}
+
+// The per-frame CPU contract (DESIGN.md 3 and 5): what the CPU writes for a frame (the uniform
+// block and the push constants it records) does not grow with the field and stays within 1 KiB,
+// with the sky moving (the light pass runs) or not.
+TEST_F(Gpu, UploadPerFrameIsSmallAndIndependentOfFieldSize) {
+    std::vector<FieldClump> clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount)};
+    FieldScenery scenery = testScenery();
+    scenery.lodCount = kLodCount;
+    scenery.lod = {{120.0f, 50.0f, 20.0f, 8.0f}, 0.1f, 0.2f, 0.05f, 0.0f};
+    std::vector<uint64_t> bytes[2];
+    const uint32_t counts[2] = {50, 40000};
+    for (int f = 0; f < 2; ++f) {
+        std::vector<gpu::GpuInstance> instances = scatter(counts[f], 23);
+        for (gpu::GpuInstance& inst : instances)
+            inst.mesh %= 2;
+        FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
+        Offscreen offscreen = createOffscreen(*context, {32, 24});
+        FrameState state = frameState(Camera{}, 32, 24);
+        for (int frame = 0; frame < 4; ++frame) {
+            state.seconds = frame / 30.0;
+            state.hours = frame < 2 ? 10.0 : 10.0 + frame * 0.1; // still, then moving
+            renderOffscreenFrame(*context, renderer, offscreen, state);
+            bytes[f].push_back(renderer.uploadBytesLastFrame);
+        }
+        destroyOffscreen(*context, offscreen);
+        destroyFieldRenderer(*context, renderer);
+    }
+    EXPECT_EQ(bytes[0], bytes[1]);
+    for (uint64_t b : bytes[1]) {
+        EXPECT_GE(b, sizeof(gpu::GpuFrame));
+        EXPECT_LE(b, 1024u);
+    }
+    EXPECT_LT(bytes[1][1], bytes[1][0]); // no light pass while the sky holds still
+}
+
+// The CPU-driven comparison path steps, culls and uploads on the host what the compute passes
+// produce on the GPU: the same motion states, and the same picture.
+TEST_F(Gpu, CpuDrivenPathDrawsTheSamePicture) {
+    std::vector<FieldClump> clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount)};
+    std::vector<gpu::GpuInstance> instances = scatter(4000, 29);
+    for (gpu::GpuInstance& inst : instances) {
+        inst.mesh %= 2;
+        inst.positionScale = glm::vec4(glm::vec3(inst.positionScale) * 0.1f, inst.positionScale.w > 0 ? 1.0f : -1.0f);
+        inst.positionScale.y = 0.0f;
+        inst.boundingRadius = 1.0f;
+    }
+    FieldScenery scenery = testScenery();
+    scenery.lodCount = kLodCount;
+    scenery.lod = {{60.0f, 25.0f, 10.0f, 4.0f}, 0.1f, 0.2f, 0.05f, 0.0f};
+    Camera camera;
+    camera.eye = glm::vec3(0.0f, 3.0f, -25.0f);
+    camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+    std::vector<uint8_t> pictures[2];
+    std::vector<gpu::GpuMotionState> states[2];
+    uint64_t uploads[2] = {0, 0};
+    for (int path = 0; path < 2; ++path) {
+        FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
+        if (path == 1)
+            enableCpuDriver(*context, renderer, clumps, instances);
+        Offscreen offscreen = createOffscreen(*context, {160, 90});
+        FrameState state = frameState(camera, 160, 90);
+        state.wind.baseLevel = 2.0f;
+        for (int frame = 0; frame < 8; ++frame) {
+            state.seconds = frame * 0.1;
+            state.camera.eye.x = float(frame) * 0.5f;
+            renderOffscreenFrame(*context, renderer, offscreen, state);
+        }
+        pictures[path] = readLdrPixels(*context, offscreen.targets);
+        states[path].resize(instances.size());
+        if (path == 0)
+            readbackBuffer(*context, renderer.motionStates, states[path].data(),
+                           states[path].size() * sizeof(gpu::GpuMotionState));
+        else
+            states[path] = cpuDriverStates(*renderer.cpuDriver);
+        uploads[path] = renderer.uploadBytesLastFrame;
+        EXPECT_GT(readFieldStats(renderer).visibleInstances, 100u);
+        destroyOffscreen(*context, offscreen);
+        destroyFieldRenderer(*context, renderer);
+    }
+    ASSERT_EQ(states[0].size(), states[1].size());
+    EXPECT_EQ(std::memcmp(states[0].data(), states[1].data(), states[0].size() * sizeof(gpu::GpuMotionState)), 0);
+    size_t differing = 0;
+    for (size_t i = 0; i < pictures[0].size(); ++i)
+        differing += std::abs(int(pictures[0][i]) - int(pictures[1][i])) > 8;
+    EXPECT_LE(differing, pictures[0].size() / 1000);
+    // The CPU path uploads a draw record per visible instance every frame: far more than the GPU
+    // path's uniforms.
+    EXPECT_GT(uploads[1], uploads[0] + 100 * sizeof(gpu::GpuDrawInstance));
+}
