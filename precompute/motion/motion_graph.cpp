@@ -101,10 +101,7 @@ std::vector<float> stepsToLevel(const MotionGraph& g, uint32_t level) {
     return cost;
 }
 
-} // namespace
-
-MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionClip>& clips,
-                             const MotionGraphParams& params) {
+void checkInputs(const Eigen::MatrixXf& q, const std::vector<MotionClip>& clips, const MotionGraphParams& params) {
     checkParams(params);
     if (q.cols() == 0 || q.rows() == 0)
         throw Error("motion graph: q is empty (" + std::to_string(q.rows()) + " x " + std::to_string(q.cols()) + ")");
@@ -112,9 +109,12 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
         throw Error("motion graph: no motion clips");
     if (!q.allFinite())
         throw Error("motion graph: q holds NaN or infinite coordinates");
-    const size_t frames = size_t(q.cols());
-    const std::vector<uint32_t> clipOf = clipOfFrames(clips, uint32_t(frames));
+}
 
+// The nodes, one per frame: the levels (each must have a clip), each frame's level, and the frame
+// after it in its clip.
+MotionGraph graphNodes(const std::vector<MotionClip>& clips, const std::vector<uint32_t>& clipOf, size_t frames,
+                       const MotionGraphParams& params) {
     MotionGraph g;
     g.nodeCount = uint32_t(frames);
     g.blendFrames = params.blendFrames;
@@ -139,14 +139,23 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
         if (f + 1 < size_t(clip.firstFrame) + clip.frameCount)
             g.naturalNext[f] = uint32_t(f + 1);
     }
+    return g;
+}
 
-    // 1. Distances.
+// Distances D(i -> j), row-major F x F: how well frame j stands in for i's successor (+inf where
+// no transition may be considered).
+std::vector<float> distances(const Eigen::MatrixXf& q, const std::vector<MotionClip>& clips,
+                             const std::vector<uint32_t>& clipOf, const MotionGraphParams& params) {
     const Eigen::MatrixXf features = motionFeatures(q, clips, params.frameRate, params.velocityWeight);
-    const std::vector<float> transition =
-        transitionDistances(pairwiseSquaredDistances(features), clips, clipOf, params.window);
+    return transitionDistances(pairwiseSquaredDistances(features), clips, clipOf, params.window);
+}
 
-    // The level statistic: a low quantile of the intra-level D. Values are gathered per row in
-    // parallel and concatenated in row order; nth_element then depends only on the values.
+// The level statistic: a low quantile of the intra-level D. Values are gathered per row in
+// parallel and concatenated in row order; nth_element then depends only on the values.
+std::vector<double> levelStatistics(const MotionGraph& g, const std::vector<float>& transition,
+                                    const std::vector<uint32_t>& clipOf, size_t frames,
+                                    const MotionGraphParams& params) {
+    const uint32_t levels = g.levelCount;
     std::vector<std::vector<float>> rowValues(frames);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, frames, 32), [&](const tbb::blocked_range<size_t>& rows) {
         for (size_t i = rows.begin(); i != rows.end(); ++i) {
@@ -174,13 +183,28 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
             throw Error("motion graph: wind level " + std::to_string(l) +
                         " has no pair of distinct frames to compare (clips shorter than the window, or motionless)");
     }
-    rowValues = {};
-    auto threshold = [&](uint32_t a, uint32_t b) {
-        return params.thresholdScale * (a == b ? levelStatistic[a] : std::sqrt(levelStatistic[a] * levelStatistic[b]));
-    };
+    return levelStatistic;
+}
 
-    // 2. Local minima per row, and the ones below threshold.
-    std::vector<std::vector<Candidate>> minima(frames), chosen(frames);
+// The largest D of a good transition from level a to level b.
+double threshold(const MotionGraphParams& params, const std::vector<double>& levelStatistic, uint32_t a, uint32_t b) {
+    return params.thresholdScale * (a == b ? levelStatistic[a] : std::sqrt(levelStatistic[a] * levelStatistic[b]));
+}
+
+// Per source frame: every local minimum of D in its row, and the transitions chosen among them.
+struct Candidates {
+    std::vector<std::vector<Candidate>> minima;
+    std::vector<std::vector<Candidate>> chosen;
+};
+
+// Local minima per row, and the ones below threshold (the best maxTransitionsPerLevel per
+// target level).
+Candidates localMinima(const MotionGraph& g, const std::vector<float>& transition, const std::vector<uint32_t>& clipOf,
+                       size_t frames, const std::vector<double>& levelStatistic, const MotionGraphParams& params) {
+    const uint32_t levels = g.levelCount;
+    Candidates candidates{std::vector<std::vector<Candidate>>(frames), std::vector<std::vector<Candidate>>(frames)};
+    std::vector<std::vector<Candidate>>& minima = candidates.minima;
+    std::vector<std::vector<Candidate>>& chosen = candidates.chosen;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, frames, 16), [&](const tbb::blocked_range<size_t>& rows) {
         for (size_t i = rows.begin(); i != rows.end(); ++i) {
             if (clipOf[i] == kNoClip)
@@ -190,7 +214,7 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
                     minima[i].push_back({uint32_t(i), uint32_t(j), transition[i * frames + j]});
             std::vector<Candidate> good;
             for (const Candidate& c : minima[i])
-                if (c.distance <= threshold(g.nodeLevel[i], g.nodeLevel[c.to]))
+                if (c.distance <= threshold(params, levelStatistic, g.nodeLevel[i], g.nodeLevel[c.to]))
                     good.push_back(c);
             std::sort(good.begin(), good.end(), candidateBefore);
             std::vector<uint32_t> perLevel(levels, 0);
@@ -199,20 +223,31 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
                     chosen[i].push_back(c);
         }
     });
-    auto countTo = [&](size_t i, uint32_t level) {
-        uint32_t n = 0;
-        for (const Candidate& c : chosen[i])
-            n += g.nodeLevel[c.to] == level;
-        return n;
-    };
-    auto alreadyChosen = [&](const Candidate& candidate) {
-        for (const Candidate& c : chosen[candidate.from])
-            if (c.to == candidate.to)
-                return true;
-        return false;
-    };
+    return candidates;
+}
 
-    // 3. Adjacent levels must be joined both ways.
+// How many transitions chosen from frame i lead to `level`.
+uint32_t countTo(const MotionGraph& g, const std::vector<std::vector<Candidate>>& chosen, size_t i, uint32_t level) {
+    uint32_t n = 0;
+    for (const Candidate& c : chosen[i])
+        n += g.nodeLevel[c.to] == level;
+    return n;
+}
+
+bool alreadyChosen(const std::vector<std::vector<Candidate>>& chosen, const Candidate& candidate) {
+    for (const Candidate& c : chosen[candidate.from])
+        if (c.to == candidate.to)
+            return true;
+    return false;
+}
+
+// Adjacent levels must be joined both ways: where too few transitions were chosen, the best
+// other local minima are added (and the pair of levels recorded).
+void joinAdjacentLevels(MotionGraph& g, Candidates& candidates, const std::vector<uint32_t>& clipOf, size_t frames,
+                        const MotionGraphParams& params) {
+    const uint32_t levels = g.levelCount;
+    const std::vector<std::vector<Candidate>>& minima = candidates.minima;
+    std::vector<std::vector<Candidate>>& chosen = candidates.chosen;
     for (uint32_t a = 0; a < levels; ++a)
         for (uint32_t b : {a - 1, a + 1}) {
             if (b >= levels) // a - 1 wraps for a = 0
@@ -222,7 +257,7 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
             for (size_t i = 0; i < frames; ++i) {
                 if (clipOf[i] == kNoClip || g.nodeLevel[i] != a)
                     continue;
-                have += countTo(i, b);
+                have += countTo(g, chosen, i, b);
                 for (const Candidate& c : minima[i])
                     if (g.nodeLevel[c.to] == b && clipOf[c.to] != kNoClip)
                         pool.push_back(c);
@@ -235,17 +270,20 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
             for (const Candidate& c : pool) {
                 if (have >= params.minCrossLevelTransitions)
                     break;
-                if (countTo(c.from, b) >= params.maxTransitionsPerLevel || alreadyChosen(c))
+                if (countTo(g, chosen, c.from, b) >= params.maxTransitionsPerLevel || alreadyChosen(chosen, c))
                     continue;
                 chosen[c.from].push_back(c);
                 ++have;
             }
         }
+}
 
-    // 4. Every clip's last frame needs a way on within its level.
+// Every clip's last frame needs a way on within its level: the frame of its level nearest in D.
+void continueClipEnds(MotionGraph& g, std::vector<std::vector<Candidate>>& chosen, const std::vector<float>& transition,
+                      const std::vector<MotionClip>& clips, const std::vector<uint32_t>& clipOf, size_t frames) {
     for (const MotionClip& clip : clips) {
         const size_t last = size_t(clip.firstFrame) + clip.frameCount - 1;
-        if (countTo(last, clip.level) > 0)
+        if (countTo(g, chosen, last, clip.level) > 0)
             continue;
         Candidate best{uint32_t(last), 0, std::numeric_limits<float>::infinity()};
         for (size_t j = 0; j < frames; ++j) {
@@ -259,9 +297,20 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
         chosen[last].push_back(best);
         ++g.forcedClipEndTransitions;
     }
+}
 
-    // 5. Prune to strongly connected components, the whole graph and each level, to a fixed point.
-    std::vector<std::vector<uint32_t>> adjacency(frames), levelAdjacency(frames);
+// Each frame's successors: its natural next frame, then its chosen transitions by target frame
+// (`chosen` is sorted so); `withinLevel` keeps those to the frame's own level.
+struct Adjacency {
+    std::vector<std::vector<uint32_t>> whole;
+    std::vector<std::vector<uint32_t>> withinLevel;
+};
+
+Adjacency adjacencyLists(const MotionGraph& g, std::vector<std::vector<Candidate>>& chosen,
+                         const std::vector<uint32_t>& clipOf, size_t frames) {
+    Adjacency lists{std::vector<std::vector<uint32_t>>(frames), std::vector<std::vector<uint32_t>>(frames)};
+    std::vector<std::vector<uint32_t>>& adjacency = lists.whole;
+    std::vector<std::vector<uint32_t>>& levelAdjacency = lists.withinLevel;
     for (size_t i = 0; i < frames; ++i) {
         if (clipOf[i] == kNoClip)
             continue;
@@ -275,7 +324,15 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
             if (g.nodeLevel[j] == g.nodeLevel[i])
                 levelAdjacency[i].push_back(j);
     }
-    const CsrGraph whole = makeCsr(adjacency), byLevel = makeCsr(levelAdjacency);
+    return lists;
+}
+
+// Prune to strongly connected components, the whole graph and each level, to a fixed point;
+// records which nodes live and throws when a level lost them all.
+std::vector<uint8_t> pruneToStrongComponents(MotionGraph& g, const Adjacency& lists,
+                                             const std::vector<uint32_t>& clipOf, size_t frames) {
+    const uint32_t levels = g.levelCount;
+    const CsrGraph whole = makeCsr(lists.whole), byLevel = makeCsr(lists.withinLevel);
     std::vector<uint8_t> keep(frames, 0);
     for (size_t i = 0; i < frames; ++i)
         keep[i] = clipOf[i] != kNoClip;
@@ -304,8 +361,12 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
             throw Error("motion graph: pruning to strongly connected components left wind level " + std::to_string(l) +
                         " without frames (too few transitions: raise thresholdScale or simulate longer)");
     }
+    return keep;
+}
 
-    // The final CSR: live nodes, edges between live nodes, natural edge first.
+// The final CSR: live nodes, edges between live nodes, natural edge first.
+void finalEdges(MotionGraph& g, const std::vector<std::vector<uint32_t>>& adjacency,
+                const std::vector<std::vector<Candidate>>& chosen, const std::vector<uint8_t>& keep, size_t frames) {
     g.edgeStart.assign(frames + 1, 0);
     for (size_t i = 0; i < frames; ++i) {
         if (keep[i]) {
@@ -328,8 +389,12 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
         g.edgeStart[i + 1] = uint32_t(g.edgeTarget.size());
     }
     g.edgeCount = uint32_t(g.edgeTarget.size());
+}
 
-    // 6. Probabilities (Schödl et al. 2000, eq. 2), future costs and the integer weights.
+// Probabilities (Schödl et al. 2000, eq. 2). Returns each edge's quality exp(-(D - best) / sigma),
+// which the weights reuse.
+std::vector<double> edgeProbabilities(MotionGraph& g, const std::vector<double>& levelStatistic, size_t frames,
+                                      const MotionGraphParams& params) {
     std::vector<double> quality(g.edgeCount, 0.0);
     g.edgeProbability.assign(g.edgeCount, 0.0f);
     for (size_t i = 0; i < frames; ++i) {
@@ -349,11 +414,23 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
         for (uint32_t e = begin; e < end; ++e)
             g.edgeProbability[e] = float(quality[e] / sum);
     }
+    return quality;
+}
+
+// Future costs: per level, the fewest steps from each node until a frame of that level plays.
+void futureCosts(MotionGraph& g, size_t frames) {
+    const uint32_t levels = g.levelCount;
     g.futureCost.resize(size_t(levels) * frames);
     for (uint32_t l = 0; l < levels; ++l) {
         const std::vector<float> cost = stepsToLevel(g, l);
         std::copy(cost.begin(), cost.end(), g.futureCost.begin() + ptrdiff_t(size_t(l) * frames));
     }
+}
+
+// The integer weights per target level: quality (floored away from the level) times a preference
+// for the edges on the shortest ways to it, 65535 for each node's best edge.
+void edgeWeights(MotionGraph& g, const std::vector<double>& quality, size_t frames, const MotionGraphParams& params) {
+    const uint32_t levels = g.levelCount;
     g.edgeWeight.assign(size_t(levels) * g.edgeCount, 0);
     std::vector<double> raw;
     for (uint32_t l = 0; l < levels; ++l) {
@@ -378,26 +455,52 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
                 g.edgeWeight[size_t(l) * g.edgeCount + e] = uint32_t(std::lround(65535.0 * raw[e - begin] / maxRaw));
         }
     }
+}
 
-    // Connectivity as recorded facts (pruning guarantees them; tests check them independently).
-    {
-        CsrGraph live{g.edgeStart, g.edgeTarget};
-        std::vector<uint8_t> check = keep;
-        g.stronglyConnected = keepLargestComponent(live, check) == 0;
-        std::vector<std::vector<uint32_t>> intra(frames);
+// Connectivity as recorded facts (pruning guarantees them; tests check them independently).
+void recordConnectivity(MotionGraph& g, const std::vector<uint8_t>& keep, size_t frames) {
+    const uint32_t levels = g.levelCount;
+    CsrGraph live{g.edgeStart, g.edgeTarget};
+    std::vector<uint8_t> check = keep;
+    g.stronglyConnected = keepLargestComponent(live, check) == 0;
+    std::vector<std::vector<uint32_t>> intra(frames);
+    for (size_t i = 0; i < frames; ++i)
+        for (uint32_t e = g.edgeStart[i]; e < g.edgeStart[i + 1]; ++e)
+            if (g.nodeLevel[g.edgeTarget[e]] == g.nodeLevel[i])
+                intra[i].push_back(g.edgeTarget[e]);
+    const CsrGraph intraGraph = makeCsr(intra);
+    g.levelStronglyConnected.assign(levels, 0);
+    for (uint32_t l = 0; l < levels; ++l) {
+        std::vector<uint8_t> keepLevel(frames, 0);
         for (size_t i = 0; i < frames; ++i)
-            for (uint32_t e = g.edgeStart[i]; e < g.edgeStart[i + 1]; ++e)
-                if (g.nodeLevel[g.edgeTarget[e]] == g.nodeLevel[i])
-                    intra[i].push_back(g.edgeTarget[e]);
-        const CsrGraph intraGraph = makeCsr(intra);
-        g.levelStronglyConnected.assign(levels, 0);
-        for (uint32_t l = 0; l < levels; ++l) {
-            std::vector<uint8_t> keepLevel(frames, 0);
-            for (size_t i = 0; i < frames; ++i)
-                keepLevel[i] = keep[i] && g.nodeLevel[i] == l;
-            g.levelStronglyConnected[l] = keepLargestComponent(intraGraph, keepLevel) == 0;
-        }
+            keepLevel[i] = keep[i] && g.nodeLevel[i] == l;
+        g.levelStronglyConnected[l] = keepLargestComponent(intraGraph, keepLevel) == 0;
     }
+}
+
+} // namespace
+
+MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionClip>& clips,
+                             const MotionGraphParams& params) {
+    checkInputs(q, clips, params);
+    const size_t frames = size_t(q.cols());
+    const std::vector<uint32_t> clipOf = clipOfFrames(clips, uint32_t(frames));
+    MotionGraph g = graphNodes(clips, clipOf, frames, params);
+
+    const std::vector<float> transition = distances(q, clips, clipOf, params);
+    const std::vector<double> levelStatistic = levelStatistics(g, transition, clipOf, frames, params);
+    Candidates candidates = localMinima(g, transition, clipOf, frames, levelStatistic, params);
+    joinAdjacentLevels(g, candidates, clipOf, frames, params);
+    continueClipEnds(g, candidates.chosen, transition, clips, clipOf, frames);
+
+    const Adjacency adjacency = adjacencyLists(g, candidates.chosen, clipOf, frames);
+    const std::vector<uint8_t> keep = pruneToStrongComponents(g, adjacency, clipOf, frames);
+    finalEdges(g, adjacency.whole, candidates.chosen, keep, frames);
+
+    const std::vector<double> quality = edgeProbabilities(g, levelStatistic, frames, params);
+    futureCosts(g, frames);
+    edgeWeights(g, quality, frames, params);
+    recordConnectivity(g, keep, frames);
     return g;
 }
 
