@@ -102,16 +102,16 @@ class Checker {
     std::string file_;
 };
 
-} // namespace
-
-Scene loadScene(const std::filesystem::path& path, const std::string& preset, std::optional<uint64_t> seed) {
-    Checker check(path.string());
+void checkPreset(const std::string& preset) {
     bool knownPreset = false;
     for (const char* name : kPresetNames)
         knownPreset |= preset == name;
     if (!knownPreset)
         throw Error("unknown preset '" + preset + "' (use ci or full)");
+}
 
+// The file as JSON, its nesting and top-level keys checked.
+json readSceneJson(const std::filesystem::path& path, const Checker& check) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw Error("scene " + path.string() + ": is a folder, not a scene file");
@@ -134,8 +134,11 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
     check.onlyKeys(doc, "",
                    {"name", "description", "seed", "presets", "field", "camera", "timeOfDay", "plants", "wind",
                     "motion", "sky", "light", "lod"});
+    return doc;
+}
 
-    // Merge the preset's overrides over the base description.
+// The base description with the preset's overrides merged over it, and without "presets".
+json resolvePreset(const json& doc, const std::string& preset, const Checker& check) {
     json resolved = doc;
     resolved.erase("presets");
     if (doc.contains("presets")) {
@@ -149,38 +152,41 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
             resolved.merge_patch(presets[preset]);
         }
     }
+    return resolved;
+}
 
-    Scene scene;
-    scene.path = path;
-    scene.preset = preset;
+// The name (it goes into file names) and the description.
+std::string readName(const json& resolved, const Checker& check) {
     const json& name = check.require(resolved, "", "name");
     if (!name.is_string() || name.get<std::string>().empty())
         check.fail("name", "must be a non-empty string");
-    scene.name = name.get<std::string>();
-    if (scene.name.size() > kMaxNameLength)
+    std::string text = name.get<std::string>();
+    if (text.size() > kMaxNameLength)
         check.fail("name", "must be at most " + std::to_string(kMaxNameLength) + " characters long (got " +
-                               std::to_string(scene.name.size()) + ")");
-    for (char c : scene.name)
+                               std::to_string(text.size()) + ")");
+    for (char c : text)
         if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_'))
-            check.fail("name", "may hold only letters, digits, '-' and '_' (got \"" + scene.name + "\")");
+            check.fail("name", "may hold only letters, digits, '-' and '_' (got \"" + text + "\")");
     if (resolved.contains("description") && !resolved["description"].is_string())
         check.fail("description", "must be a string");
+    return text;
+}
 
-    if (seed) {
-        scene.seed = *seed;
-    } else {
-        const json& s = check.require(resolved, "", "seed");
-        if (!s.is_number_unsigned())
-            check.fail("seed", "must be a non-negative integer (got " + describe(s) + ")");
-        scene.seed = s.get<uint64_t>();
-    }
-    resolved["seed"] = scene.seed;
+// The seed given on the command line, else the scene's.
+uint64_t readSeed(const json& resolved, std::optional<uint64_t> seed, const Checker& check) {
+    if (seed)
+        return *seed;
+    const json& s = check.require(resolved, "", "seed");
+    if (!s.is_number_unsigned())
+        check.fail("seed", "must be a non-negative integer (got " + describe(s) + ")");
+    return s.get<uint64_t>();
+}
 
+void readField(const json& resolved, FieldSpec& f, const Checker& check) {
     const json& field = check.require(resolved, "", "field");
     check.onlyKeys(field, "field",
                    {"tilesX", "tilesY", "tileSize", "cellSize", "margin", "yawJitter", "rocksPerTile", "rockVariants",
                     "sweptFrames", "terrain"});
-    FieldSpec& f = scene.field;
     f.tilesX = check.count(check.require(field, "field", "tilesX"), "field.tilesX", 1, 1024);
     f.tilesY = check.count(check.require(field, "field", "tilesY"), "field.tilesY", 1, 1024);
     f.tileSize = check.number(field.value("tileSize", json(f.tileSize)), "field.tileSize", 0.5f, 1000.0f);
@@ -198,148 +204,176 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
         f.terrainWavelength = check.number(terrain.value("wavelength", json(f.terrainWavelength)),
                                            "field.terrain.wavelength", 1.0f, 10000.0f);
     }
+}
 
-    if (resolved.contains("camera")) {
-        const json& cam = resolved["camera"];
-        check.onlyKeys(cam, "camera", {"eye", "target", "fovYDegrees"});
-        scene.camera.eye = check.vec3(check.require(cam, "camera", "eye"), "camera.eye");
-        scene.camera.target = check.vec3(check.require(cam, "camera", "target"), "camera.target");
-        scene.camera.fovYDegrees =
-            check.number(cam.value("fovYDegrees", json(55.0)), "camera.fovYDegrees", 5.0f, 150.0f);
-        if (glm::length(scene.camera.target - scene.camera.eye) < 1e-3f)
-            check.fail("camera.target", "must differ from camera.eye");
+void readCamera(const json& cam, SceneCamera& camera, const Checker& check) {
+    check.onlyKeys(cam, "camera", {"eye", "target", "fovYDegrees"});
+    camera.eye = check.vec3(check.require(cam, "camera", "eye"), "camera.eye");
+    camera.target = check.vec3(check.require(cam, "camera", "target"), "camera.target");
+    camera.fovYDegrees = check.number(cam.value("fovYDegrees", json(55.0)), "camera.fovYDegrees", 5.0f, 150.0f);
+    if (glm::length(camera.target - camera.eye) < 1e-3f)
+        check.fail("camera.target", "must differ from camera.eye");
+}
+
+// Plants: iris clumps, or one clump from a glTF file next to the scene.
+void readPlants(const json& plants, const std::filesystem::path& path, PlantsParams& spec, const Checker& check) {
+    check.onlyKeys(plants, "plants", {"source", "clumps", "gltf"});
+    const json& source = plants.value("source", json("iris"));
+    if (!source.is_string() || (source != "iris" && source != "gltf"))
+        check.fail("plants.source", "must be \"iris\" or \"gltf\" (got " + describe(source) + ")");
+    spec.source = source.get<std::string>();
+    spec.clumps = check.count(plants.value("clumps", json(4)), "plants.clumps", 1, 16);
+    if (spec.source == "gltf") {
+        const json& file = check.require(plants, "plants", "gltf");
+        if (!file.is_string() || file.get<std::string>().empty())
+            check.fail("plants.gltf", "must be a file name");
+        spec.gltf = path.parent_path() / file.get<std::string>();
+        spec.clumps = 1;
     }
+}
+
+void readWind(const json& wind, WindParams& spec, const Checker& check) {
+    check.onlyKeys(wind, "wind", {"direction", "levels", "turbulence", "gustPeriod"});
+    if (wind.contains("direction")) {
+        glm::vec3 d = check.vec3(wind["direction"], "wind.direction");
+        d.y = 0.0f;
+        if (glm::length(d) < 1e-3f)
+            check.fail("wind.direction", "must have a horizontal component");
+        spec.direction = glm::normalize(d);
+    }
+    if (wind.contains("levels")) {
+        const json& levels = wind["levels"];
+        if (!levels.is_array() || levels.size() < 2 || levels.size() > 8)
+            check.fail("wind.levels", "must be an array of 2 to 8 speeds, calm first");
+        spec.levelSpeeds.clear();
+        for (size_t i = 0; i < levels.size(); ++i) {
+            float speed = check.number(levels[i], "wind.levels[" + std::to_string(i) + "]", 0.0f, 30.0f);
+            if (i > 0 && speed <= spec.levelSpeeds.back())
+                check.fail("wind.levels", "must increase from calm to strong");
+            spec.levelSpeeds.push_back(speed);
+        }
+    }
+    spec.turbulence = check.number(wind.value("turbulence", json(0.3)), "wind.turbulence", 0.0f, 1.0f);
+    spec.gustPeriod = check.number(wind.value("gustPeriod", json(4.0)), "wind.gustPeriod", 0.2f, 60.0f);
+}
+
+void readMotion(const json& motion, MotionParams& m, const Checker& check) {
+    check.onlyKeys(motion, "motion", {"frameRate", "substeps", "settleSeconds", "recordSeconds", "lod0MaxError"});
+    m.frameRate = check.number(motion.value("frameRate", json(30.0)), "motion.frameRate", 10.0f, 120.0f);
+    m.substeps = check.count(motion.value("substeps", json(20)), "motion.substeps", 4, 200);
+    m.settleSeconds = check.number(motion.value("settleSeconds", json(2.0)), "motion.settleSeconds", 0.0f, 60.0f);
+    m.recordSeconds = check.number(motion.value("recordSeconds", json(20.0)), "motion.recordSeconds", 0.5f, 300.0f);
+    m.lod0MaxError = check.number(motion.value("lod0MaxError", json(0.01)), "motion.lod0MaxError", 1e-4f, 0.5f);
+}
+
+// The sky's overrides of the preset's parameters, and panoramas (next to the scene) to use instead
+// of the daylight model.
+void readSky(const json& skyJson, const std::filesystem::path& path, SkySource& source, const Checker& check) {
+    check.onlyKeys(
+        skyJson, "sky",
+        {"latitude", "dayOfYear", "turbidity", "groundAlbedo", "nightLuminance", "frames", "imageWidth", "maps"});
+    sky::SkyParams& p = source.params;
+    p.latitudeDegrees = check.number(skyJson.value("latitude", json(p.latitudeDegrees)), "sky.latitude", -90, 90);
+    p.dayOfYear = check.number(skyJson.value("dayOfYear", json(p.dayOfYear)), "sky.dayOfYear", 1, 366);
+    p.daylight.turbidity =
+        check.number(skyJson.value("turbidity", json(p.daylight.turbidity)), "sky.turbidity", 1.7f, 10.0f);
+    p.daylight.groundAlbedo =
+        check.number(skyJson.value("groundAlbedo", json(p.daylight.groundAlbedo)), "sky.groundAlbedo", 0, 1);
+    p.daylight.nightLuminance =
+        check.number(skyJson.value("nightLuminance", json(p.daylight.nightLuminance)), "sky.nightLuminance", 0, 1000);
+    p.frames = check.count(skyJson.value("frames", json(p.frames)), "sky.frames", 1, 4096);
+    p.imageWidth = check.count(skyJson.value("imageWidth", json(p.imageWidth)), "sky.imageWidth", 4, 1024);
+    if (p.imageWidth % 2 != 0)
+        check.fail("sky.imageWidth", "must be even (the backdrop is a 2:1 panorama)");
+    p.imageHeight = p.imageWidth / 2;
+    if (skyJson.contains("maps")) {
+        const json& maps = skyJson["maps"];
+        if (!maps.is_array() || maps.empty() || maps.size() > 1024)
+            check.fail("sky.maps", "must be an array of 1 to 1024 panorama file names");
+        for (size_t i = 0; i < maps.size(); ++i) {
+            if (!maps[i].is_string() || maps[i].get<std::string>().empty())
+                check.fail("sky.maps[" + std::to_string(i) + "]", "must be a file name");
+            source.maps.push_back(path.parent_path() / maps[i].get<std::string>());
+        }
+    }
+}
+
+// The light's overrides of the preset's bake settings.
+void readLight(const json& light, LightParams& l, const Checker& check) {
+    check.onlyKeys(light, "light",
+                   {"raysPerVertex", "bounces", "framesPerLevel", "appearanceMaxError", "maxAppearanceModes",
+                    "groundGridSize", "groundGridResolution", "groundRaysPerPoint"});
+    l.bake.raysPerVertex =
+        check.count(light.value("raysPerVertex", json(l.bake.raysPerVertex)), "light.raysPerVertex", 8, 65536);
+    l.bake.bounces = check.count(light.value("bounces", json(l.bake.bounces)), "light.bounces", 0, 16);
+    l.framesPerLevel =
+        check.count(light.value("framesPerLevel", json(l.framesPerLevel)), "light.framesPerLevel", 2, 1000);
+    l.appearanceMaxError = check.number(light.value("appearanceMaxError", json(l.appearanceMaxError)),
+                                        "light.appearanceMaxError", 0.0f, 1.0f);
+    l.maxAppearanceModes =
+        check.count(light.value("maxAppearanceModes", json(l.maxAppearanceModes)), "light.maxAppearanceModes", 1, 256);
+    l.bake.groundGridSize =
+        check.number(light.value("groundGridSize", json(l.bake.groundGridSize)), "light.groundGridSize", 0.05f, 100.0f);
+    l.bake.groundGridResolution = check.count(light.value("groundGridResolution", json(l.bake.groundGridResolution)),
+                                              "light.groundGridResolution", 2, 256);
+    l.bake.groundRaysPerPoint = check.count(light.value("groundRaysPerPoint", json(l.bake.groundRaysPerPoint)),
+                                            "light.groundRaysPerPoint", 8, 65536);
+}
+
+// The triangle fractions of the LODs: 1 for LOD 0, then non-increasing.
+void readLod(const json& lod, LodParams& spec, const Checker& check) {
+    check.onlyKeys(lod, "lod", {"triangleFractions"});
+    if (lod.contains("triangleFractions")) {
+        const json& f = lod["triangleFractions"];
+        if (!f.is_array() || f.size() != spec.triangleFractions.size())
+            check.fail("lod.triangleFractions", "must be an array of 5 fractions of the full mesh");
+        for (size_t i = 0; i < f.size(); ++i) {
+            const std::string key = "lod.triangleFractions[" + std::to_string(i) + "]";
+            spec.triangleFractions[i] = check.number(f[i], key, 1e-4f, 1.0f);
+            if (i == 0 && spec.triangleFractions[0] != 1.0f)
+                check.fail(key, "must be 1: LOD 0 is the full mesh");
+            if (i > 0 && spec.triangleFractions[i] > spec.triangleFractions[i - 1])
+                check.fail(key, "must not exceed the fraction before it");
+        }
+    }
+}
+
+} // namespace
+
+Scene loadScene(const std::filesystem::path& path, const std::string& preset, std::optional<uint64_t> seed) {
+    Checker check(path.string());
+    checkPreset(preset);
+    const json doc = readSceneJson(path, check);
+    json resolved = resolvePreset(doc, preset, check);
+
+    Scene scene;
+    scene.path = path;
+    scene.preset = preset;
+    scene.name = readName(resolved, check);
+    scene.seed = readSeed(resolved, seed, check);
+    resolved["seed"] = scene.seed;
+    readField(resolved, scene.field, check);
+    if (resolved.contains("camera"))
+        readCamera(resolved["camera"], scene.camera, check);
     if (resolved.contains("timeOfDay"))
         scene.timeOfDay = check.number(resolved["timeOfDay"], "timeOfDay", 0.0f, 24.0f);
-
-    if (resolved.contains("plants")) {
-        const json& plants = resolved["plants"];
-        check.onlyKeys(plants, "plants", {"source", "clumps", "gltf"});
-        const json& source = plants.value("source", json("iris"));
-        if (!source.is_string() || (source != "iris" && source != "gltf"))
-            check.fail("plants.source", "must be \"iris\" or \"gltf\" (got " + describe(source) + ")");
-        scene.plants.source = source.get<std::string>();
-        scene.plants.clumps = check.count(plants.value("clumps", json(4)), "plants.clumps", 1, 16);
-        if (scene.plants.source == "gltf") {
-            const json& file = check.require(plants, "plants", "gltf");
-            if (!file.is_string() || file.get<std::string>().empty())
-                check.fail("plants.gltf", "must be a file name");
-            scene.plants.gltf = path.parent_path() / file.get<std::string>();
-            scene.plants.clumps = 1;
-        }
-    }
-    if (resolved.contains("wind")) {
-        const json& wind = resolved["wind"];
-        check.onlyKeys(wind, "wind", {"direction", "levels", "turbulence", "gustPeriod"});
-        if (wind.contains("direction")) {
-            glm::vec3 d = check.vec3(wind["direction"], "wind.direction");
-            d.y = 0.0f;
-            if (glm::length(d) < 1e-3f)
-                check.fail("wind.direction", "must have a horizontal component");
-            scene.wind.direction = glm::normalize(d);
-        }
-        if (wind.contains("levels")) {
-            const json& levels = wind["levels"];
-            if (!levels.is_array() || levels.size() < 2 || levels.size() > 8)
-                check.fail("wind.levels", "must be an array of 2 to 8 speeds, calm first");
-            scene.wind.levelSpeeds.clear();
-            for (size_t i = 0; i < levels.size(); ++i) {
-                float speed = check.number(levels[i], "wind.levels[" + std::to_string(i) + "]", 0.0f, 30.0f);
-                if (i > 0 && speed <= scene.wind.levelSpeeds.back())
-                    check.fail("wind.levels", "must increase from calm to strong");
-                scene.wind.levelSpeeds.push_back(speed);
-            }
-        }
-        scene.wind.turbulence = check.number(wind.value("turbulence", json(0.3)), "wind.turbulence", 0.0f, 1.0f);
-        scene.wind.gustPeriod = check.number(wind.value("gustPeriod", json(4.0)), "wind.gustPeriod", 0.2f, 60.0f);
-    }
-    if (resolved.contains("motion")) {
-        const json& motion = resolved["motion"];
-        check.onlyKeys(motion, "motion", {"frameRate", "substeps", "settleSeconds", "recordSeconds", "lod0MaxError"});
-        MotionParams& m = scene.motion;
-        m.frameRate = check.number(motion.value("frameRate", json(30.0)), "motion.frameRate", 10.0f, 120.0f);
-        m.substeps = check.count(motion.value("substeps", json(20)), "motion.substeps", 4, 200);
-        m.settleSeconds = check.number(motion.value("settleSeconds", json(2.0)), "motion.settleSeconds", 0.0f, 60.0f);
-        m.recordSeconds = check.number(motion.value("recordSeconds", json(20.0)), "motion.recordSeconds", 0.5f, 300.0f);
-        m.lod0MaxError = check.number(motion.value("lod0MaxError", json(0.01)), "motion.lod0MaxError", 1e-4f, 0.5f);
-    }
+    if (resolved.contains("plants"))
+        readPlants(resolved["plants"], path, scene.plants, check);
+    if (resolved.contains("wind"))
+        readWind(resolved["wind"], scene.wind, check);
+    if (resolved.contains("motion"))
+        readMotion(resolved["motion"], scene.motion, check);
 
     scene.sky.params = sky::skyParamsForPreset(preset);
-    if (resolved.contains("sky")) {
-        const json& skyJson = resolved["sky"];
-        check.onlyKeys(
-            skyJson, "sky",
-            {"latitude", "dayOfYear", "turbidity", "groundAlbedo", "nightLuminance", "frames", "imageWidth", "maps"});
-        sky::SkyParams& p = scene.sky.params;
-        p.latitudeDegrees = check.number(skyJson.value("latitude", json(p.latitudeDegrees)), "sky.latitude", -90, 90);
-        p.dayOfYear = check.number(skyJson.value("dayOfYear", json(p.dayOfYear)), "sky.dayOfYear", 1, 366);
-        p.daylight.turbidity =
-            check.number(skyJson.value("turbidity", json(p.daylight.turbidity)), "sky.turbidity", 1.7f, 10.0f);
-        p.daylight.groundAlbedo =
-            check.number(skyJson.value("groundAlbedo", json(p.daylight.groundAlbedo)), "sky.groundAlbedo", 0, 1);
-        p.daylight.nightLuminance = check.number(skyJson.value("nightLuminance", json(p.daylight.nightLuminance)),
-                                                 "sky.nightLuminance", 0, 1000);
-        p.frames = check.count(skyJson.value("frames", json(p.frames)), "sky.frames", 1, 4096);
-        p.imageWidth = check.count(skyJson.value("imageWidth", json(p.imageWidth)), "sky.imageWidth", 4, 1024);
-        if (p.imageWidth % 2 != 0)
-            check.fail("sky.imageWidth", "must be even (the backdrop is a 2:1 panorama)");
-        p.imageHeight = p.imageWidth / 2;
-        if (skyJson.contains("maps")) {
-            const json& maps = skyJson["maps"];
-            if (!maps.is_array() || maps.empty() || maps.size() > 1024)
-                check.fail("sky.maps", "must be an array of 1 to 1024 panorama file names");
-            for (size_t i = 0; i < maps.size(); ++i) {
-                if (!maps[i].is_string() || maps[i].get<std::string>().empty())
-                    check.fail("sky.maps[" + std::to_string(i) + "]", "must be a file name");
-                scene.sky.maps.push_back(path.parent_path() / maps[i].get<std::string>());
-            }
-        }
-    }
-
+    if (resolved.contains("sky"))
+        readSky(resolved["sky"], path, scene.sky, check);
     scene.light.bake = transfer::bakeSettingsForPreset(preset);
     if (preset == "ci")
         scene.light.framesPerLevel = 8;
-    if (resolved.contains("light")) {
-        const json& light = resolved["light"];
-        check.onlyKeys(light, "light",
-                       {"raysPerVertex", "bounces", "framesPerLevel", "appearanceMaxError", "maxAppearanceModes",
-                        "groundGridSize", "groundGridResolution", "groundRaysPerPoint"});
-        LightParams& l = scene.light;
-        l.bake.raysPerVertex =
-            check.count(light.value("raysPerVertex", json(l.bake.raysPerVertex)), "light.raysPerVertex", 8, 65536);
-        l.bake.bounces = check.count(light.value("bounces", json(l.bake.bounces)), "light.bounces", 0, 16);
-        l.framesPerLevel =
-            check.count(light.value("framesPerLevel", json(l.framesPerLevel)), "light.framesPerLevel", 2, 1000);
-        l.appearanceMaxError = check.number(light.value("appearanceMaxError", json(l.appearanceMaxError)),
-                                            "light.appearanceMaxError", 0.0f, 1.0f);
-        l.maxAppearanceModes = check.count(light.value("maxAppearanceModes", json(l.maxAppearanceModes)),
-                                           "light.maxAppearanceModes", 1, 256);
-        l.bake.groundGridSize = check.number(light.value("groundGridSize", json(l.bake.groundGridSize)),
-                                             "light.groundGridSize", 0.05f, 100.0f);
-        l.bake.groundGridResolution =
-            check.count(light.value("groundGridResolution", json(l.bake.groundGridResolution)),
-                        "light.groundGridResolution", 2, 256);
-        l.bake.groundRaysPerPoint = check.count(light.value("groundRaysPerPoint", json(l.bake.groundRaysPerPoint)),
-                                                "light.groundRaysPerPoint", 8, 65536);
-    }
-
-    if (resolved.contains("lod")) {
-        const json& lod = resolved["lod"];
-        check.onlyKeys(lod, "lod", {"triangleFractions"});
-        if (lod.contains("triangleFractions")) {
-            const json& f = lod["triangleFractions"];
-            if (!f.is_array() || f.size() != scene.lod.triangleFractions.size())
-                check.fail("lod.triangleFractions", "must be an array of 5 fractions of the full mesh");
-            for (size_t i = 0; i < f.size(); ++i) {
-                const std::string key = "lod.triangleFractions[" + std::to_string(i) + "]";
-                scene.lod.triangleFractions[i] = check.number(f[i], key, 1e-4f, 1.0f);
-                if (i == 0 && scene.lod.triangleFractions[0] != 1.0f)
-                    check.fail(key, "must be 1: LOD 0 is the full mesh");
-                if (i > 0 && scene.lod.triangleFractions[i] > scene.lod.triangleFractions[i - 1])
-                    check.fail(key, "must not exceed the fraction before it");
-            }
-        }
-    }
+    if (resolved.contains("light"))
+        readLight(resolved["light"], scene.light, check);
+    if (resolved.contains("lod"))
+        readLod(resolved["lod"], scene.lod, check);
 
     scene.resolved = std::move(resolved);
     return scene;
