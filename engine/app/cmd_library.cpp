@@ -79,7 +79,8 @@ int runInspect(const Args& argv) {
         nlohmann::json clump;
         clump["name"] = c.name;
         clump["plants"] = c.plants;
-        // Levels of detail by simplification are later work: LOD0, the full mesh, is all there is.
+        // The five levels of detail (precompute/lod): LOD 0 the whole mesh, then ever fewer triangles,
+        // each with the motion modes it plays and its error against LOD 0 at rest and over the motion.
         clump["lods"] = nlohmann::json::array();
         for (uint32_t l = 0; l < kLodCount; ++l) {
             const LodError& e = c.lods[l].error;

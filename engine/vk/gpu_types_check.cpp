@@ -1,7 +1,11 @@
-// Compile-time proof that the C++ view of shaders/shared/gpu_types.h matches the std140/std430
-// layout the shaders see. A failing assert here means the header gained a member that the two
-// languages lay out differently.
+// Compile-time proof that the C++ view of the structs of shaders/shared that live in buffers
+// (gpu_types.h, draw_instance.h) matches the std140/std430 layout the shaders see: every member's
+// offset and every size. A failing assert means a member that the two languages lay out
+// differently. (GpuLodParams and GpuLodChoice of lod_select.h live in registers only.)
 #include "gpu_types.h"
+// After gpu_types.h and motion_step.h, as draw_instance.h asks.
+#include "draw_instance.h"
+#include "motion_step.h"
 
 #include <cstddef>
 #include <vulkan/vulkan.h>
@@ -31,8 +35,30 @@ static_assert(offsetof(GpuFrame, skyBlend) == 448);
 static_assert(offsetof(GpuFrame, groundMap) == 464);
 static_assert(sizeof(GpuFrame) == 480);
 
-static_assert(sizeof(GpuClump) == 112 && offsetof(GpuClump, ground) == 80 && offsetof(GpuClump, albedo) == 96);
-static_assert(sizeof(GpuLodVertex) == 48 && offsetof(GpuLodVertex, motion) == 32);
+static_assert(offsetof(GpuClump, motion) == 0);
+static_assert(offsetof(GpuClump, graph) == 16);
+static_assert(offsetof(GpuClump, graphSizes) == 32);
+static_assert(offsetof(GpuClump, light) == 48);
+static_assert(offsetof(GpuClump, yawBins) == 64);
+static_assert(offsetof(GpuClump, ground) == 80);
+static_assert(offsetof(GpuClump, albedo) == 96);
+static_assert(sizeof(GpuClump) == 112);
+
+static_assert(offsetof(GpuLodVertex, positionU) == 0);
+static_assert(offsetof(GpuLodVertex, normalV) == 16);
+static_assert(offsetof(GpuLodVertex, motion) == 32);
+static_assert(sizeof(GpuLodVertex) == 48);
+
+static_assert(offsetof(GpuMotionState, frame) == 0);
+static_assert(offsetof(GpuMotionState, blendFrom) == 4);
+static_assert(offsetof(GpuMotionState, blendFramesLeft) == 8);
+static_assert(offsetof(GpuMotionState, counter) == 12);
+static_assert(sizeof(GpuMotionState) == 16);
+
+static_assert(offsetof(GpuDrawInstance, positionScale) == 0);
+static_assert(offsetof(GpuDrawInstance, pose) == 16);
+static_assert(offsetof(GpuDrawInstance, offsets) == 32);
+static_assert(sizeof(GpuDrawInstance) == 48);
 
 static_assert(offsetof(GpuInstance, positionScale) == 0);
 static_assert(offsetof(GpuInstance, yaw) == 16);
@@ -45,7 +71,8 @@ static_assert(offsetof(GpuVertex, positionU) == 0);
 static_assert(offsetof(GpuVertex, normalV) == 16);
 static_assert(sizeof(GpuVertex) == 32);
 
-static_assert(sizeof(GpuDrawIndexedCommand) == sizeof(VkDrawIndexedIndirectCommand));
+static_assert(sizeof(GpuDrawIndexedCommand) == sizeof(VkDrawIndexedIndirectCommand) &&
+              sizeof(GpuDrawIndexedCommand) == 20);
 static_assert(offsetof(GpuDrawIndexedCommand, indexCount) == offsetof(VkDrawIndexedIndirectCommand, indexCount));
 static_assert(offsetof(GpuDrawIndexedCommand, instanceCount) == offsetof(VkDrawIndexedIndirectCommand, instanceCount));
 static_assert(offsetof(GpuDrawIndexedCommand, firstIndex) == offsetof(VkDrawIndexedIndirectCommand, firstIndex));
@@ -54,6 +81,8 @@ static_assert(offsetof(GpuDrawIndexedCommand, firstInstance) == offsetof(VkDrawI
 
 static_assert(offsetof(GpuCullStats, visibleInstances) == 0);
 static_assert(offsetof(GpuCullStats, testedInstances) == 4);
+static_assert(offsetof(GpuCullStats, pad0) == 8);
+static_assert(offsetof(GpuCullStats, pad1) == 12);
 static_assert(sizeof(GpuCullStats) == 16);
 
 } // namespace meadow::gpu

@@ -6,21 +6,36 @@
 #include "vk/spirv_reflect.h"
 #include "vk/vk_check.h"
 
+#include <algorithm>
 #include <map>
 
 namespace meadow {
 namespace {
 
+// A shader module for the time a pipeline is being made; destroyed when it goes out of scope, so
+// that a pipeline refused for a mismatch leaves nothing behind on the device.
 struct LoadedShader {
+    VkDevice device = VK_NULL_HANDLE;
     VkShaderModule module = VK_NULL_HANDLE;
     ShaderReflection reflection;
+    explicit LoadedShader(VkDevice d) : device(d) {}
+    LoadedShader(LoadedShader&& o) noexcept : device(o.device), module(o.module), reflection(std::move(o.reflection)) {
+        o.module = VK_NULL_HANDLE;
+    }
+    LoadedShader(const LoadedShader&) = delete;
+    LoadedShader& operator=(const LoadedShader&) = delete;
+    LoadedShader& operator=(LoadedShader&&) = delete;
+    ~LoadedShader() {
+        if (module != VK_NULL_HANDLE)
+            vkDestroyShaderModule(device, module, nullptr);
+    }
 };
 
 LoadedShader loadShader(Context& ctx, std::string_view name) {
     std::span<const uint32_t> code = findShader(name);
     if (code.empty())
         throw Error("shader " + std::string(name) + " is not built into this meadow executable");
-    LoadedShader shader;
+    LoadedShader shader(ctx.device);
     shader.reflection = reflectShader(code, std::string(name));
     VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     info.codeSize = code.size_bytes();
@@ -32,11 +47,11 @@ LoadedShader loadShader(Context& ctx, std::string_view name) {
 // Merges the shaders' bindings into one push-descriptor set layout and a pipeline layout.
 void createLayouts(Context& ctx, Pipeline& p, const std::vector<const LoadedShader*>& shaders, uint32_t pushSize) {
     std::map<uint32_t, std::pair<VkDescriptorType, VkShaderStageFlags>> merged;
-    bool usesPush = false;
+    uint32_t declared = 0; // the largest push-constant block of the stages
     for (const LoadedShader* s : shaders) {
         p.stages |= s->reflection.stage;
-        usesPush |= s->reflection.usesPushConstants;
-        if (s->reflection.usesPushConstants)
+        declared = std::max(declared, s->reflection.pushConstantBytes);
+        if (s->reflection.pushConstantBytes > 0)
             p.pushConstantStages |= s->reflection.stage;
         for (auto [binding, type] : s->reflection.bindings) {
             auto it = merged.find(binding);
@@ -47,9 +62,10 @@ void createLayouts(Context& ctx, Pipeline& p, const std::vector<const LoadedShad
             merged[binding].second |= s->reflection.stage;
         }
     }
-    if (usesPush != (pushSize > 0))
+    if (pushSize != declared)
         throw Error("pipeline " + p.name + ": push constant size " + std::to_string(pushSize) +
-                    (usesPush ? " but the shaders declare push constants" : " but the shaders declare none"));
+                    (declared ? " but the shaders' block is " + std::to_string(declared) + " bytes"
+                              : " but the shaders declare none"));
 
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     uint32_t expected = 0;
@@ -97,7 +113,6 @@ Pipeline createComputePipeline(Context& ctx, std::string_view shaderName, uint32
     info.stage.pName = "main";
     info.layout = p.layout;
     VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline));
-    vkDestroyShaderModule(ctx.device, shader.module, nullptr);
     return p;
 }
 
@@ -181,8 +196,6 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc) 
     info.pDynamicState = &dynamic;
     info.layout = p.layout;
     VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline));
-    vkDestroyShaderModule(ctx.device, vs.module, nullptr);
-    vkDestroyShaderModule(ctx.device, fs.module, nullptr);
     return p;
 }
 

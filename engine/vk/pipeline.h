@@ -27,7 +27,8 @@ struct Pipeline {
     std::string name;
 };
 
-// `pushConstantSize` must be non-zero exactly when the shader declares push constants.
+// `pushConstantSize` must be the size of the shader's push-constant block as its SPIR-V lays it out
+// (0 when it declares none); anything else throws, naming both.
 Pipeline createComputePipeline(Context& context, std::string_view shader, uint32_t pushConstantSize = 0);
 
 struct GraphicsPipelineDesc {

@@ -2,6 +2,7 @@
 
 #include "vk/vk_check.h"
 
+#include <algorithm>
 #include <unordered_map>
 #include <vector>
 
@@ -12,6 +13,10 @@ namespace {
 enum : uint32_t {
     kOpEntryPoint = 15,
     kOpExecutionMode = 16,
+    kOpTypeInt = 21,
+    kOpTypeFloat = 22,
+    kOpTypeVector = 23,
+    kOpTypeMatrix = 24,
     kOpTypeImage = 25,
     kOpTypeSampler = 26,
     kOpTypeSampledImage = 27,
@@ -22,12 +27,16 @@ enum : uint32_t {
     kOpConstant = 43,
     kOpVariable = 59,
     kOpDecorate = 71,
+    kOpMemberDecorate = 72,
     kOpExecutionModeId = 331,
 
     kDecorationBlock = 2,
+    kDecorationArrayStride = 6,
+    kDecorationMatrixStride = 7,
     kDecorationBufferBlock = 3,
     kDecorationBinding = 33,
     kDecorationDescriptorSet = 34,
+    kDecorationOffset = 35,
 
     kStorageUniformConstant = 0,
     kStorageUniform = 2,
@@ -50,9 +59,42 @@ struct Id {
     uint32_t binding = ~0u;
     uint32_t constant = 0;
     uint32_t sampled = 0; // OpTypeImage: 1 sampled, 2 storage
+    uint32_t width = 0;   // OpTypeInt, OpTypeFloat: bits
+    uint32_t count = 0;   // OpTypeVector: components; OpTypeMatrix: columns; OpTypeArray: the length's id
+    uint32_t arrayStride = 0;
     bool block = false;
     bool bufferBlock = false;
+    struct Member {
+        uint32_t type = 0, offset = 0, matrixStride = 0;
+    };
+    std::vector<Member> members; // OpTypeStruct
 };
+
+// The bytes a value of `typeId` spans in an explicitly laid out block (push constants): scalars,
+// vectors, matrices, arrays and structs, by their Offset, ArrayStride and MatrixStride.
+uint32_t typeBytes(const std::vector<Id>& ids, uint32_t typeId, uint32_t matrixStride, int depth,
+                   const std::string& name) {
+    if (typeId >= ids.size() || depth > 16)
+        throw Error("shader " + name + ": malformed push-constant type");
+    const Id& t = ids[typeId];
+    switch (t.opcode) {
+    case kOpTypeInt:
+    case kOpTypeFloat: return t.width / 8;
+    case kOpTypeVector: return t.count * typeBytes(ids, t.typeId, 0, depth + 1, name);
+    case kOpTypeMatrix: return t.count * (matrixStride ? matrixStride : typeBytes(ids, t.typeId, 0, depth + 1, name));
+    case kOpTypeArray: {
+        uint32_t length = t.count < ids.size() ? ids[t.count].constant : 0;
+        return length * (t.arrayStride ? t.arrayStride : typeBytes(ids, t.typeId, 0, depth + 1, name));
+    }
+    case kOpTypeStruct: {
+        uint32_t end = 0;
+        for (const Id::Member& m : t.members)
+            end = std::max(end, m.offset + typeBytes(ids, m.type, m.matrixStride, depth + 1, name));
+        return end;
+    }
+    default: throw Error("shader " + name + ": a push constant of a type meadow does not lay out");
+    }
+}
 
 } // namespace
 
@@ -106,18 +148,50 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
                 id(1).binding = w[3];
             if (w[2] == kDecorationDescriptorSet && words >= 4)
                 id(1).set = w[3];
+            if (w[2] == kDecorationArrayStride && words >= 4)
+                id(1).arrayStride = w[3];
+            break;
+        case kOpMemberDecorate:
+            if (words >= 5 && (w[3] == kDecorationOffset || w[3] == kDecorationMatrixStride)) {
+                // Decorations come before the types: the struct's member types fill in later.
+                std::vector<Id::Member>& members = id(1).members;
+                if (w[2] >= 4096)
+                    throw Error("shader " + name + ": a member decoration names member " + std::to_string(w[2]));
+                if (w[2] >= members.size())
+                    members.resize(w[2] + 1);
+                (w[3] == kDecorationOffset ? members[w[2]].offset : members[w[2]].matrixStride) = w[4];
+            }
+            break;
+        case kOpTypeInt:
+        case kOpTypeFloat:
+            id(1).opcode = opcode;
+            id(1).width = words >= 3 ? w[2] : 0;
+            break;
+        case kOpTypeVector:
+        case kOpTypeMatrix:
+            id(1).opcode = opcode;
+            id(1).typeId = words >= 4 ? w[2] : 0;
+            id(1).count = words >= 4 ? w[3] : 0;
             break;
         case kOpTypeImage:
             id(1).opcode = opcode;
             id(1).sampled = words >= 8 ? w[7] : 0;
             break;
         case kOpTypeSampler:
-        case kOpTypeSampledImage:
-        case kOpTypeStruct: id(1).opcode = opcode; break;
+        case kOpTypeSampledImage: id(1).opcode = opcode; break;
+        case kOpTypeStruct:
+            id(1).opcode = opcode;
+            if (id(1).members.size() > words - 2)
+                throw Error("shader " + name + ": a member decoration names a member the struct lacks");
+            id(1).members.resize(words - 2);
+            for (uint32_t m = 2; m < words; ++m)
+                id(1).members[m - 2].type = w[m];
+            break;
         case kOpTypeArray:
         case kOpTypeRuntimeArray:
             id(1).opcode = opcode;
             id(1).typeId = w[2];
+            id(1).count = opcode == kOpTypeArray && words >= 4 ? w[3] : 0;
             break;
         case kOpTypePointer:
             id(1).opcode = opcode;
@@ -146,7 +220,8 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
         if (var.opcode != kOpVariable)
             continue;
         if (var.storageClass == kStoragePushConstant) {
-            out.usesPushConstants = true;
+            uint32_t pointee = var.typeId < bound ? ids[var.typeId].typeId : bound;
+            out.pushConstantBytes = std::max(out.pushConstantBytes, typeBytes(ids, pointee, 0, 0, name));
             continue;
         }
         if (var.storageClass != kStorageUniform && var.storageClass != kStorageUniformConstant &&

@@ -1,6 +1,6 @@
 // Reads back from a SPIR-V module what the host would otherwise repeat by hand: the stage, the
-// compute workgroup size, and the descriptor bindings (set 0 only: meadow uses push
-// descriptors), so pipeline layouts always match their shaders.
+// compute workgroup size, the descriptor bindings (set 0 only: meadow uses push descriptors) and
+// the size of the push-constant block, so pipeline layouts always match their shaders.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +15,7 @@ struct ShaderReflection {
     VkShaderStageFlagBits stage = VK_SHADER_STAGE_ALL;
     uint32_t localSize[3] = {0, 0, 0};             // compute only
     std::map<uint32_t, VkDescriptorType> bindings; // binding index -> type
-    bool usesPushConstants = false;
+    uint32_t pushConstantBytes = 0; // the push-constant block's size (last member's offset + size); 0: none
 };
 
 // Throws meadow::Error naming `name` when the module is malformed or uses what meadow does not

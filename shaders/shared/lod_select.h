@@ -35,7 +35,8 @@ inline float clamp(float x, float lo, float hi) {
 
 MEADOW_LOD_CONST kLodSelectCount = 5; // LODs 0 .. 4
 
-// std140/std430-compatible: three vec4-sized rows.
+// Values in registers only (never in a buffer: the frame carries them as GpuFrame::lodSwitchRadius
+// and lodBand), so only C++ and GLSL need to agree on the members.
 struct GpuLodParams {
     float switchRadius[4]; // px: below switchRadius[i] LOD i + 1 replaces LOD i; descending
     float band;            // half-width of each crossfade band, relative to its radius (0 .. 0.5)

@@ -1,8 +1,8 @@
 // The Vulkan core on a real device (lavapipe in CI): upload and readback, the memory
 // sub-allocator, and the validation plumbing that every GPU test relies on.
 // ctest runs these at two lavapipe vector widths (LP_NATIVE_VECTOR_WIDTH=128 and 256).
-#include "gpu_fixture.h"
 #include "core/error.h"
+#include "gpu_fixture.h"
 #include "sh_light.h"
 #include "vk/barriers.h"
 #include "vk/context.h"
@@ -58,6 +58,24 @@ TEST_F(Gpu, SubAllocatorSharesBlocksAndReturnsMemory) {
                               MemoryUse::Device);
     EXPECT_EQ(big.allocation.offset, 0u);
     destroyBuffer(*context, big);
+}
+
+// A push-constant size other than the shader's block is refused, naming both, and the refused
+// pipeline leaves nothing on the device (the fixture's validation check).
+TEST_F(Gpu, PushConstantSizeMustMatchTheShader) {
+    auto refusal = [&](std::string_view shader, uint32_t size) {
+        try {
+            Pipeline p = createComputePipeline(*context, shader, size);
+            destroyPipeline(*context, p);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(refusal("light.comp", 8), "pipeline light.comp: push constant size 8 but the shaders' block is 4 bytes");
+    EXPECT_EQ(refusal("light.comp", 0), "pipeline light.comp: push constant size 0 but the shaders' block is 4 bytes");
+    EXPECT_EQ(refusal("cull.comp", 4), "pipeline cull.comp: push constant size 4 but the shaders declare none");
+    EXPECT_EQ(refusal("light.comp", 4), "no error");
 }
 
 // The validation plumbing itself: a real hazard must be reported, or the validation tests

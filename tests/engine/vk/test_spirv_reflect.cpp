@@ -18,7 +18,7 @@ TEST(SpirvReflect, CullPassLayout) {
     EXPECT_EQ(r.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     for (uint32_t b = 1; b <= 8; ++b)
         EXPECT_EQ(r.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
-    EXPECT_FALSE(r.usesPushConstants);
+    EXPECT_EQ(r.pushConstantBytes, 0u);
 }
 
 TEST(SpirvReflect, TonemapUsesStorageImages) {
@@ -32,8 +32,10 @@ TEST(SpirvReflect, TonemapUsesStorageImages) {
 TEST(SpirvReflect, GraphicsStagesAndPushConstants) {
     EXPECT_EQ(reflectShader(findShader("instance.vert"), "v").stage, VK_SHADER_STAGE_VERTEX_BIT);
     EXPECT_EQ(reflectShader(findShader("instance.frag"), "f").stage, VK_SHADER_STAGE_FRAGMENT_BIT);
-    EXPECT_TRUE(reflectShader(findShader("instance.vert"), "v").usesPushConstants);
-    EXPECT_FALSE(reflectShader(findShader("ground.vert"), "g").usesPushConstants);
+    // The push-constant blocks' sizes as the SPIR-V lays them out: a vec4, a uint, none.
+    EXPECT_EQ(reflectShader(findShader("instance.vert"), "v").pushConstantBytes, 16u);
+    EXPECT_EQ(reflectShader(findShader("light.comp"), "l").pushConstantBytes, 4u);
+    EXPECT_EQ(reflectShader(findShader("ground.vert"), "g").pushConstantBytes, 0u);
     EXPECT_TRUE(reflectShader(findShader("sky.vert"), "s").bindings.empty());
 }
 
