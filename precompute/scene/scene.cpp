@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 
+#include <charconv>
 #include <fstream>
 #include <set>
 
@@ -95,9 +96,15 @@ class Checker {
     }
 
   private:
+    // A bound as written in the code: the shortest decimal that reads back as the same float
+    // (0.002, not the double 0.0020000000949949026), with ".0" on whole numbers.
     static std::string fmt(float f) {
-        json j = f;
-        return j.dump();
+        char text[32];
+        auto [end, ec] = std::to_chars(text, text + sizeof(text), f);
+        std::string out(text, ec == std::errc() ? end : text);
+        if (out.find_first_of(".en") == std::string::npos)
+            out += ".0";
+        return out;
     }
     std::string file_;
 };

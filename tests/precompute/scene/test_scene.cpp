@@ -113,6 +113,13 @@ TEST(Scene, SkyErrorsNameTheKey) {
               std::string::npos);
 }
 
+// Bounds are printed as written in the code, not as the double nearest their float.
+TEST(Scene, RangeMessagesPrintTheBoundsAsWritten) {
+    const std::string e = errorOf(
+        writeScene("r1.json", R"({"name": "t", "seed": 5, "field": {"tilesX": 1, "tilesY": 1, "cellSize": 7}})"));
+    EXPECT_NE(e.find("field.cellSize must be between 0.002 and 1.0 (got 7)"), std::string::npos) << e;
+}
+
 TEST(Scene, LodFractionsAreCheckedInOrder) {
     auto scene = [](const std::string& lod) {
         return R"({"name": "t", "seed": 5, "field": {"tilesX": 1, "tilesY": 1}, "lod": )" + lod + "}";

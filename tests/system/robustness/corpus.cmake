@@ -78,7 +78,7 @@ meadow_corpus_scene(number_overflow.json "${s}number_overflow.json: invalid JSON
 meadow_corpus_scene(negative_tile_size.json "${s}negative_tile_size.json: field.tileSize must be between 0.5 and 1000.0 \\(got -7\\)")
 meadow_corpus_scene(zero_tile_size.json "${s}zero_tile_size.json: field.tileSize must be between 0.5 and 1000.0 \\(got 0\\)")
 meadow_corpus_scene(zero_tiles.json "${s}zero_tiles.json: field.tilesX must be between 1 and 1024 \\(got 0\\)")
-meadow_corpus_scene(negative_cell_size.json "${s}negative_cell_size.json: field.cellSize must be between .* \\(got -0.025\\)")
+meadow_corpus_scene(negative_cell_size.json "${s}negative_cell_size.json: field.cellSize must be between 0.002 and 1.0 \\(got -0.025\\)")
 meadow_corpus_scene(negative_wind_speed.json "${s}negative_wind_speed.json: wind.levels\\[0\\] must be between 0.0 and 30.0 \\(got -1.0\\)")
 meadow_corpus_scene(negative_record_time.json "${s}negative_record_time.json: motion.recordSeconds must be between 0.5 and 300.0 \\(got -4\\)")
 meadow_corpus_scene(billion_clumps.json "${s}billion_clumps.json: plants.clumps must be between 1 and 16 \\(got 1000000000\\)")
