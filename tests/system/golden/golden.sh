@@ -45,12 +45,20 @@ case_args() {
       # The LOD debug view: each clump in its level of detail's colour (red 0 .. violet 4).
       args=(render "$scene" --preset ci --size 160x90 --debug-lod)
       threshold=0.04; percent=0.5 ;;
+    lod_sheet)
+      # One clump at each level of detail, and the differences (meadow sheet --lods), validated.
+      args=(sheet "$scene" --preset ci --clump 2 --lods --cell 64x64 --validation)
+      threshold=0.04; percent=0.5 ;;
+    motion_sheet)
+      # One clump at every wind level, played from its motion basis (meadow sheet), validated.
+      args=(sheet "$scene" --preset ci --clump 1 --columns 3 --cell 64x64 --validation)
+      threshold=0.04; percent=0.5 ;;
     *) echo "golden.sh: unknown case '$1'" >&2; exit 2 ;;
   esac
 }
 
 if [ "${1:-}" = "--list" ]; then
-  echo field_afternoon field_morning_high calm_noon windy_evening low_camera lod_colors
+  echo field_afternoon field_morning_high calm_noon windy_evening low_camera lod_colors lod_sheet motion_sheet
   exit 0
 fi
 
