@@ -152,13 +152,32 @@ int runInspect(const Args& argv) {
     for (const gpu::GpuInstance& inst : lib.field.clumpInstances)
         plants += lib.clumps[inst.mesh].plants;
     const PlacementStats& ps = lib.field.stats;
-    j["tiles"] = {{"count", ps.tiles},
+    // The tiles the field's tiling uses, and their figures; the complete set's under completeSet.
+    // overlapViolations checks every tile of the set against every neighbour it may have.
+    std::vector<uint32_t> clumpsUsed, rocksUsed;
+    uint64_t voxelClumps = 0, discClumps = 0;
+    for (uint32_t t : ps.fieldTiles) {
+        clumpsUsed.push_back(ps.clumpsPerTile[t]);
+        rocksUsed.push_back(ps.rocksPerTile[t]);
+        voxelClumps += ps.clumpsPerTile[t];
+        discClumps += ps.poissonClumpsPerTile[t];
+    }
+    j["tiles"] = {{"count", ps.fieldTiles.size()},
+                  {"indices", ps.fieldTiles},
                   {"size", ps.tileSize},
-                  {"clumpsPerTile", ps.clumpsPerTile},
-                  {"rocksPerTile", ps.rocksPerTile},
-                  {"densityVsPoissonDisc", ps.densityVsPoissonDisc},
+                  {"clumpsPerTile", clumpsUsed},
+                  {"rocksPerTile", rocksUsed},
+                  {"densityVsPoissonDisc", discClumps ? double(voxelClumps) / double(discClumps) : 0.0},
                   {"overlapViolations", ps.overlapViolations},
-                  {"sweptFootprintRadius", ps.sweptFootprintRadius}};
+                  {"overlapViolationsAllFrames", ps.overlapViolationsAllFrames},
+                  {"sweptFootprintRadius", ps.sweptFootprintRadius},
+                  {"sweptFrames", ps.sweptFrames},
+                  {"simulatedFrames", ps.simulatedFrames},
+                  {"completeSet",
+                   {{"count", ps.tiles},
+                    {"clumpsPerTile", ps.clumpsPerTile},
+                    {"rocksPerTile", ps.rocksPerTile},
+                    {"densityVsPoissonDisc", ps.densityVsPoissonDisc}}}};
     j["field"] = {
         {"tilesX", ps.tilesX},
         {"tilesY", ps.tilesY},
@@ -170,6 +189,8 @@ int runInspect(const Args& argv) {
         {"clumpsRemoved3d", ps.clumpsRemoved3d},
         {"rocksRemoved3d", ps.rocksRemoved3d},
         {"overlapViolations3d", ps.overlapViolations3d},
+        {"overlapViolations3dAllFrames", ps.overlapViolations3dAllFrames},
+        {"wangTiles", ps.fieldTiles.size()},
         {"terrain", {{"amplitude", lib.field.terrain.amplitude}, {"wavelength", lib.field.terrain.wavelength}}}};
     j["atlas"] = {{"width", lib.atlas.width}, {"height", lib.atlas.height}};
     j["sky"] = {{"frames", lib.sky.frames.size()},

@@ -28,6 +28,15 @@ struct PlacementStats {
     uint32_t clumpsRemoved3d = 0, rocksRemoved3d = 0;
     uint32_t overlapViolations3d = 0;        // left in the final field (must be 0)
     std::vector<float> sweptFootprintRadius; // per clump, m
+    // The tiles of the set that the field's tiling uses (indices, ascending), and the disc
+    // baseline's clumps per tile of the set, so that the field's figures can be taken over those.
+    std::vector<uint32_t> fieldTiles;
+    std::vector<uint32_t> poissonClumpsPerTile;
+    // Swept volumes are voxelised from some of each clump's simulated frames (sweptFrames of
+    // simulatedFrames, per clump). The same overlap checks with volumes of every frame:
+    std::vector<uint32_t> sweptFrames, simulatedFrames;
+    uint32_t overlapViolationsAllFrames = 0;   // as overlapViolations (tile pairs)
+    uint32_t overlapViolations3dAllFrames = 0; // as overlapViolations3d (pairs in the final field)
 };
 
 // A rock's mesh (plants/rock.h makes them).

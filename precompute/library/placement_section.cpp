@@ -29,6 +29,12 @@ void writePlacementSection(ByteWriter& w, const Library& library) {
     w.u32(s.rocksRemoved3d);
     w.u32(s.overlapViolations3d);
     w.f32s(s.sweptFootprintRadius);
+    w.u32s(s.fieldTiles);
+    w.u32s(s.poissonClumpsPerTile);
+    w.u32s(s.sweptFrames);
+    w.u32s(s.simulatedFrames);
+    w.u32(s.overlapViolationsAllFrames);
+    w.u32(s.overlapViolations3dAllFrames);
 }
 
 void readPlacementSection(ByteReader& r, const std::string& where, Library& library) {
@@ -54,6 +60,12 @@ void readPlacementSection(ByteReader& r, const std::string& where, Library& libr
     s.rocksRemoved3d = r.u32();
     s.overlapViolations3d = r.u32();
     s.sweptFootprintRadius = r.f32s(64);
+    s.fieldTiles = r.u32s(1024);
+    s.poissonClumpsPerTile = r.u32s(1024);
+    s.sweptFrames = r.u32s(64);
+    s.simulatedFrames = r.u32s(64);
+    s.overlapViolationsAllFrames = r.u32();
+    s.overlapViolations3dAllFrames = r.u32();
     r.expectEnd();
     try {
         Terrain check(t); // validates the parameters
@@ -62,8 +74,13 @@ void readPlacementSection(ByteReader& r, const std::string& where, Library& libr
     }
     if (s.clumpsPerTile.size() != s.tiles || s.rocksPerTile.size() != s.tiles || !(s.tileSize > 0.0f) ||
         !std::isfinite(s.tileSize) || !std::isfinite(s.densityVsPoissonDisc) ||
-        !(std::abs(glm::length(field.windDirection) - 1.0f) < 1e-3f))
+        !(std::abs(glm::length(field.windDirection) - 1.0f) < 1e-3f) || s.poissonClumpsPerTile.size() != s.tiles ||
+        s.fieldTiles.empty() || s.sweptFrames.size() != s.sweptFootprintRadius.size() ||
+        s.simulatedFrames.size() != s.sweptFrames.size())
         throw Error(where + ": inconsistent tile figures");
+    for (size_t i = 0; i < s.fieldTiles.size(); ++i)
+        if (s.fieldTiles[i] >= s.tiles || (i > 0 && s.fieldTiles[i] <= s.fieldTiles[i - 1]))
+            throw Error(where + ": the field's tiles are not ascending indices into the set");
 }
 
 } // namespace meadow

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace meadow {
 namespace {
@@ -38,23 +39,31 @@ PlacedField placeField(const Scene& scene, const std::vector<ClumpMotion>& motio
     voxels.margin = p.margin;
 
     // Swept volumes from the simulated frames, half of them from the strongest wind level as
-    // Cove & James weight theirs.
-    std::vector<SweptVolume> clumpVolumes;
+    // Cove & James weight theirs; and, to measure what that sample misses, from every frame.
+    std::vector<SweptVolume> clumpVolumes, allFrameVolumes;
     for (size_t c = 0; c < motions.size(); ++c) {
         const ClumpMotion& motion = motions[c];
         std::vector<uint32_t> framesPerLevel;
         for (const MotionClip& clip : motion.clips)
             framesPerLevel.push_back(clip.frameCount);
         const std::vector<uint32_t> frames = selectSweptFrames(framesPerLevel, p.sweptFrames, 0.5f);
+        const uint32_t simulated = motion.basis.frames;
         const Mesh& mesh = meshes[c];
-        FrameSource frameAt = [&](uint32_t i, std::vector<glm::vec3>& positions) {
-            positions.resize(mesh.vertices.size());
-            for (size_t v = 0; v < mesh.vertices.size(); ++v)
-                positions[v] =
-                    glm::vec3(mesh.vertices[v].positionU) + motion.basis.displacement(uint32_t(v), frames[i]);
+        auto framesFrom = [&](const std::vector<uint32_t>* picked) -> FrameSource {
+            return [&mesh, &motion, picked](uint32_t i, std::vector<glm::vec3>& positions) {
+                const uint32_t frame = picked ? (*picked)[i] : i;
+                positions.resize(mesh.vertices.size());
+                for (size_t v = 0; v < mesh.vertices.size(); ++v)
+                    positions[v] =
+                        glm::vec3(mesh.vertices[v].positionU) + motion.basis.displacement(uint32_t(v), frame);
+            };
         };
-        clumpVolumes.push_back(voxelizeSweptSurface(mesh.indices, uint32_t(frames.size()), frameAt, voxels));
+        clumpVolumes.push_back(
+            voxelizeSweptSurface(mesh.indices, uint32_t(frames.size()), framesFrom(&frames), voxels));
+        allFrameVolumes.push_back(voxelizeSweptSurface(mesh.indices, simulated, framesFrom(nullptr), voxels));
         out.stats.sweptFootprintRadius.push_back(clumpVolumes.back().footprintRadius());
+        out.stats.sweptFrames.push_back(uint32_t(frames.size()));
+        out.stats.simulatedFrames.push_back(simulated);
     }
 
     // Rocks: static, and nothing may be placed inside one.
@@ -78,7 +87,10 @@ PlacedField placeField(const Scene& scene, const std::vector<ClumpMotion>& motio
     out.stats.clumpsPerTile = tiles.clumpsPerTile();
     out.stats.rocksPerTile = tiles.rocksPerTile();
     out.stats.overlapViolations = countTileOverlapViolations(tiles, clumpVolumes, rockVolumes);
-    out.stats.densityVsPoissonDisc = densityVsPoissonDisc(tiles, fillWangTilesPoissonDisc(clumpVolumes, fill));
+    const PoissonDiscFill discs = fillWangTilesPoissonDisc(clumpVolumes, fill);
+    out.stats.densityVsPoissonDisc = densityVsPoissonDisc(tiles, discs);
+    out.stats.poissonClumpsPerTile = discs.clumpsPerTile();
+    out.stats.overlapViolationsAllFrames = countTileOverlapViolations(tiles, allFrameVolumes, rockVolumes);
 
     out.terrain.amplitude = p.terrainAmplitude;
     out.terrain.wavelength = p.terrainWavelength;
@@ -96,6 +108,9 @@ PlacedField placeField(const Scene& scene, const std::vector<ClumpMotion>& motio
     out.stats.clumpsRemoved3d = field.overlaps3d.clumpsRemoved;
     out.stats.rocksRemoved3d = field.overlaps3d.rocksRemoved;
     out.stats.overlapViolations3d = field.overlaps3d.pairsRemaining;
+    out.stats.overlapViolations3dAllFrames = uint32_t(findFieldOverlaps(field, allFrameVolumes, rockVolumes).size());
+    std::set<uint32_t> used(field.tiling.tiles.begin(), field.tiling.tiles.end());
+    out.stats.fieldTiles.assign(used.begin(), used.end());
 
     for (const PlacedInstance& placed : field.clumps)
         out.clumps.push_back(

@@ -10,7 +10,12 @@ f = j["field"]
 t = j["tiles"]
 assert f["clumps"] > 400 and f["rocks"] > 0, f
 assert f["overlapViolations3d"] == 0 and t["overlapViolations"] == 0, (f, t)
-assert t["densityVsPoissonDisc"] >= 1.5 and t["count"] == 16, t
+# The scan-line tiling draws from Cohen et al.'s 8 tiles; the figures are those of the tiles used.
+assert 1 <= f["wangTiles"] <= 8 and t["count"] == f["wangTiles"] == len(t["clumpsPerTile"]), (f, t)
+assert t["completeSet"]["count"] == 16 and len(t["completeSet"]["clumpsPerTile"]) == 16, t
+assert t["densityVsPoissonDisc"] >= 1.5 and t["completeSet"]["densityVsPoissonDisc"] >= 1.5, t
+assert len(t["sweptFrames"]) == len(t["simulatedFrames"]) == 4, t
+assert all(0 < s <= n for s, n in zip(t["sweptFrames"], t["simulatedFrames"])), t
 assert len(j["clumps"]) == 4, len(j["clumps"])
 for c in j["clumps"]:
     graph = c["motion"]["graph"]
