@@ -190,6 +190,7 @@ int runInspect(const Args& argv) {
         {"rocksRemoved3d", ps.rocksRemoved3d},
         {"overlapViolations3d", ps.overlapViolations3d},
         {"overlapViolations3dAllFrames", ps.overlapViolations3dAllFrames},
+        {"tiling", ps.tiling},
         {"wangTiles", ps.fieldTiles.size()},
         {"terrain", {{"amplitude", lib.field.terrain.amplitude}, {"wavelength", lib.field.terrain.wavelength}}}};
     j["atlas"] = {{"width", lib.atlas.width}, {"height", lib.atlas.height}};

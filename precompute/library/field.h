@@ -30,6 +30,7 @@ struct PlacementStats {
     std::vector<float> sweptFootprintRadius; // per clump, m
     // The tiles of the set that the field's tiling uses (indices, ascending), and the disc
     // baseline's clumps per tile of the set, so that the field's figures can be taken over those.
+    std::string tiling; // the field's tiling: "scanline" or "hash" (scene key field.tiling)
     std::vector<uint32_t> fieldTiles;
     std::vector<uint32_t> poissonClumpsPerTile;
     // Swept volumes are voxelised from some of each clump's simulated frames (sweptFrames of

@@ -29,6 +29,7 @@ void writePlacementSection(ByteWriter& w, const Library& library) {
     w.u32(s.rocksRemoved3d);
     w.u32(s.overlapViolations3d);
     w.f32s(s.sweptFootprintRadius);
+    w.string(s.tiling);
     w.u32s(s.fieldTiles);
     w.u32s(s.poissonClumpsPerTile);
     w.u32s(s.sweptFrames);
@@ -60,6 +61,7 @@ void readPlacementSection(ByteReader& r, const std::string& where, Library& libr
     s.rocksRemoved3d = r.u32();
     s.overlapViolations3d = r.u32();
     s.sweptFootprintRadius = r.f32s(64);
+    s.tiling = r.string();
     s.fieldTiles = r.u32s(1024);
     s.poissonClumpsPerTile = r.u32s(1024);
     s.sweptFrames = r.u32s(64);
@@ -78,6 +80,8 @@ void readPlacementSection(ByteReader& r, const std::string& where, Library& libr
         s.fieldTiles.empty() || s.sweptFrames.size() != s.sweptFootprintRadius.size() ||
         s.simulatedFrames.size() != s.sweptFrames.size())
         throw Error(where + ": inconsistent tile figures");
+    if (s.tiling != "scanline" && s.tiling != "hash")
+        throw Error(where + ": unknown tiling '" + s.tiling.substr(0, 32) + "'");
     for (size_t i = 0; i < s.fieldTiles.size(); ++i)
         if (s.fieldTiles[i] >= s.tiles || (i > 0 && s.fieldTiles[i] <= s.fieldTiles[i - 1]))
             throw Error(where + ": the field's tiles are not ascending indices into the set");

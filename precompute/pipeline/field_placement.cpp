@@ -100,6 +100,7 @@ PlacedField placeField(const Scene& scene, const std::vector<ClumpMotion>& motio
     tiling.tilesX = p.tilesX;
     tiling.tilesY = p.tilesY;
     tiling.seed = scene.seed ^ 0x6669656c64ull; // "field"
+    tiling.tiling = p.tiling == "hash" ? TilingMethod::Hash : TilingMethod::Scanline;
     const Field field = buildField(tiles, clumpVolumes, rockVolumes, terrain, tiling);
     out.stats.tilesX = field.tilesX;
     out.stats.tilesY = field.tilesY;
@@ -109,6 +110,7 @@ PlacedField placeField(const Scene& scene, const std::vector<ClumpMotion>& motio
     out.stats.rocksRemoved3d = field.overlaps3d.rocksRemoved;
     out.stats.overlapViolations3d = field.overlaps3d.pairsRemaining;
     out.stats.overlapViolations3dAllFrames = uint32_t(findFieldOverlaps(field, allFrameVolumes, rockVolumes).size());
+    out.stats.tiling = p.tiling;
     std::set<uint32_t> used(field.tiling.tiles.begin(), field.tiling.tiles.end());
     out.stats.fieldTiles.assign(used.begin(), used.end());
 

@@ -193,7 +193,7 @@ void readField(const json& resolved, FieldSpec& f, const Checker& check) {
     const json& field = check.require(resolved, "", "field");
     check.onlyKeys(field, "field",
                    {"tilesX", "tilesY", "tileSize", "cellSize", "margin", "yawJitter", "rocksPerTile", "rockVariants",
-                    "sweptFrames", "terrain"});
+                    "sweptFrames", "tiling", "terrain"});
     f.tilesX = check.count(check.require(field, "field", "tilesX"), "field.tilesX", 1, 1024);
     f.tilesY = check.count(check.require(field, "field", "tilesY"), "field.tilesY", 1, 1024);
     f.tileSize = check.number(field.value("tileSize", json(f.tileSize)), "field.tileSize", 0.5f, 1000.0f);
@@ -203,6 +203,10 @@ void readField(const json& resolved, FieldSpec& f, const Checker& check) {
     f.rocksPerTile = check.count(field.value("rocksPerTile", json(f.rocksPerTile)), "field.rocksPerTile", 0, 1000);
     f.rockVariants = check.count(field.value("rockVariants", json(f.rockVariants)), "field.rockVariants", 1, 16);
     f.sweptFrames = check.count(field.value("sweptFrames", json(f.sweptFrames)), "field.sweptFrames", 2, 100000);
+    const json& tiling = field.value("tiling", json(f.tiling));
+    if (!tiling.is_string() || (tiling != "scanline" && tiling != "hash"))
+        check.fail("field.tiling", "must be \"scanline\" or \"hash\" (got " + describe(tiling) + ")");
+    f.tiling = tiling.get<std::string>();
     if (field.contains("terrain")) {
         const json& terrain = field["terrain"];
         check.onlyKeys(terrain, "field.terrain", {"amplitude", "wavelength"});

@@ -27,7 +27,11 @@ struct FieldSpec {
     float yawJitter = 0.3f;            // rad: clumps turn at most this far (the wind has one direction)
     uint32_t rocksPerTile = 10;        // at most
     uint32_t rockVariants = 4;
-    uint32_t sweptFrames = 128;      // motion frames voxelised per clump, half from the strongest level
+    uint32_t sweptFrames = 128; // motion frames voxelised per clump, half from the strongest level
+    // How tiles are laid: "scanline" (Cohen et al.'s stochastic scan-line tiling from their 8
+    // tiles, the paper's) or "hash" (each edge's colour a hash of its coordinates, from all 16:
+    // any tile of an unbounded field is known without its neighbours).
+    std::string tiling = "scanline";
     float terrainAmplitude = 1.0f;   // m, heights within +-amplitude
     float terrainWavelength = 40.0f; // m, of the first of three octaves
 };

@@ -113,6 +113,18 @@ TEST(Scene, SkyErrorsNameTheKey) {
               std::string::npos);
 }
 
+// field.tiling chooses the scan-line (default) or the hash tiling; nothing else.
+TEST(Scene, FieldTilingIsScanlineOrHash) {
+    auto scene = [](const std::string& tiling) {
+        return R"({"name": "t", "seed": 5, "field": {"tilesX": 1, "tilesY": 1)" + tiling + "}}";
+    };
+    EXPECT_EQ(loadScene(writeScene("t1.json", scene("")), "ci", std::nullopt).field.tiling, "scanline");
+    EXPECT_EQ(loadScene(writeScene("t2.json", scene(R"(, "tiling": "hash")")), "ci", std::nullopt).field.tiling,
+              "hash");
+    const std::string e = errorOf(writeScene("t3.json", scene(R"(, "tiling": "spiral")")));
+    EXPECT_NE(e.find(R"(field.tiling must be "scanline" or "hash" (got "spiral"))"), std::string::npos) << e;
+}
+
 // Bounds are printed as written in the code, not as the double nearest their float.
 TEST(Scene, RangeMessagesPrintTheBoundsAsWritten) {
     const std::string e = errorOf(
