@@ -141,7 +141,7 @@ int runInspect(const Args& argv) {
                           {"ground",
                            {{"resolution", light.groundResolution},
                             {"size", light.groundSize},
-                            {"appearanceModes", light.ground.modes},
+                            {"model", "mean over the baked frames"},
                             {"appearanceRelError", light.ground.relativeErrorPerMode},
                             {"bakeNoise", light.groundNoise},
                             {"heldOutIrradianceRelError", light.groundHeldOutError},

@@ -70,7 +70,6 @@ int runSheet(const Args& argv) {
     gpu::GpuInstance one{};
     one.positionScale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     one.boundingRadius = clump.mesh.boundingRadius * 1.5f; // room for the swaying
-    one.tint = 0.5f;
     FieldScenery scenery{makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(2.0f), 2.0f, 0.5f),
                          library.field.windDirection};
     scenery.sky = library.sky;

@@ -63,7 +63,7 @@ static_assert(sizeof(GpuDrawInstance) == 48);
 static_assert(offsetof(GpuInstance, positionScale) == 0);
 static_assert(offsetof(GpuInstance, yaw) == 16);
 static_assert(offsetof(GpuInstance, boundingRadius) == 20);
-static_assert(offsetof(GpuInstance, tint) == 24);
+static_assert(offsetof(GpuInstance, pad0) == 24);
 static_assert(offsetof(GpuInstance, mesh) == 28);
 static_assert(sizeof(GpuInstance) == 32);
 

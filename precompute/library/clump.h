@@ -67,16 +67,14 @@ struct VertexAppearance {
     }
 };
 
-// The ground grid's transfer over the motion, a low-rank model (light/appearance.h builds it):
-// T(f) ≈ mean + basis coords(f).
+// The ground grid's transfer: its mean over the baked frames, which is what the run time plays.
+// relativeErrorPerMode says what a low-rank model of its change over the motion would gain
+// (light/appearance.h): [0] the mean's error, [k] with k modes. Over the iris clumps the first
+// mode gains less than the bake's own noise, so no modes are kept (pipeline/clump_light.cpp).
 struct GroundAppearance {
-    std::vector<float> mean;   // n values
-    uint32_t modes = 0;        // r
-    std::vector<float> basis;  // n x r, column-major (a mode's values contiguous)
-    uint32_t frames = 0;       // F, every motion frame
-    std::vector<float> coords; // r x F, column-major (a frame's coordinates contiguous)
+    std::vector<float> mean; // n values
     std::vector<uint32_t> bakedFrames;
-    std::vector<double> relativeErrorPerMode; // [k]: the error with k modes
+    std::vector<double> relativeErrorPerMode;
 };
 
 // The light transfer of a clump and of the ground around it over its motion, in transfer/

@@ -13,14 +13,13 @@ void writeInstances(ByteWriter& w, const std::vector<gpu::GpuInstance>& instance
             w.f32(inst.positionScale[i]);
         w.f32(inst.yaw);
         w.f32(inst.boundingRadius);
-        w.f32(inst.tint);
         w.u32(inst.mesh);
     }
 }
 
 std::vector<gpu::GpuInstance> readInstances(ByteReader& r, const std::string& where, uint32_t meshCount) {
     const uint32_t count = r.u32();
-    if (uint64_t(count) * 32 > r.remaining())
+    if (uint64_t(count) * 28 > r.remaining())
         throw Error(where + " holds " + std::to_string(r.remaining()) + " bytes for " + std::to_string(count) +
                     " instances");
     std::vector<gpu::GpuInstance> instances(count);
@@ -29,9 +28,8 @@ std::vector<gpu::GpuInstance> readInstances(ByteReader& r, const std::string& wh
             inst.positionScale[i] = r.f32();
         inst.yaw = r.f32();
         inst.boundingRadius = r.f32();
-        inst.tint = r.f32();
         inst.mesh = r.u32();
-        bool finite = std::isfinite(inst.yaw) && std::isfinite(inst.boundingRadius) && std::isfinite(inst.tint);
+        bool finite = std::isfinite(inst.yaw) && std::isfinite(inst.boundingRadius);
         for (int i = 0; i < 4; ++i)
             finite = finite && std::isfinite(inst.positionScale[i]);
         if (!finite)

@@ -15,13 +15,6 @@ constexpr uint32_t kTransferChannels = 3;
 
 void writeAppearance(ByteWriter& w, const GroundAppearance& m) {
     w.f32s(m.mean);
-    w.u32(m.modes);
-    // The basis in half floats: its values are of order 1 / sqrt(n) and the Monte-Carlo noise of
-    // the bake (several per cent, see ClumpLight) is far above half precision's 0.05 %.
-    w.f16s(m.basis);
-    // Frame-major: a frame's coordinates are contiguous, as an instance reads them.
-    w.u32(m.frames);
-    w.f32s(m.coords);
     w.u32s(m.bakedFrames);
     w.f32s(std::vector<float>(m.relativeErrorPerMode.begin(), m.relativeErrorPerMode.end()));
 }
@@ -30,16 +23,11 @@ GroundAppearance readAppearance(ByteReader& r, size_t values, uint32_t frames,
                                 const std::function<Error(const std::string&)>& fail) {
     GroundAppearance m;
     std::vector<float> mean = r.f32s();
-    const uint32_t modes = r.u32();
-    std::vector<float> basis = r.f16s();
-    const uint32_t coordFrames = r.u32();
-    std::vector<float> coords = r.f32s();
     m.bakedFrames = r.u32s();
     std::vector<float> errors = r.f32s();
-    if (mean.size() != values || basis.size() != values * modes || coordFrames != frames ||
-        coords.size() != size_t(modes) * frames || errors.size() < size_t(modes) + 1)
+    if (mean.size() != values || errors.empty())
         throw fail("an appearance model has the wrong size");
-    for (const std::vector<float>* v : {&mean, &basis, &coords, &errors})
+    for (const std::vector<float>* v : {&mean, &errors})
         for (float x : *v)
             if (!std::isfinite(x))
                 throw fail("an appearance model holds a non-finite value");
@@ -47,10 +35,6 @@ GroundAppearance readAppearance(ByteReader& r, size_t values, uint32_t frames,
         if (f >= frames)
             throw fail("an appearance model names baked frame " + std::to_string(f) + " of " + std::to_string(frames));
     m.mean = std::move(mean);
-    m.modes = modes;
-    m.basis = std::move(basis);
-    m.frames = frames;
-    m.coords = std::move(coords);
     m.relativeErrorPerMode.assign(errors.begin(), errors.end());
     return m;
 }

@@ -32,7 +32,7 @@ void writePlacementSection(ByteWriter& w, const Library& library); // PLCE
 void readPlacementSection(ByteReader& r, const std::string& where, Library& library);
 
 // Instances (TFLD, and the rocks' in ROCK): position and scale (w, -1 when mirrored), yaw,
-// bounding radius, tint, mesh. The reader checks every value is finite, |scale| is 1 and
+// bounding radius, mesh (28 bytes each). The reader checks every value is finite, |scale| is 1 and
 // mesh < meshCount.
 void writeInstances(ByteWriter& w, const std::vector<gpu::GpuInstance>& instances);
 std::vector<gpu::GpuInstance> readInstances(ByteReader& r, const std::string& where, uint32_t meshCount);

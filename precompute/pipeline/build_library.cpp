@@ -115,11 +115,11 @@ Library buildLibrary(const Scene& scene, bool quiet) {
     for (size_t i = 0; i < lights.size(); ++i) {
         const ClumpLight& l = lights[i];
         say("clump %s light: %zu frames baked (noise %.2f%%); noon irradiance at held-out frames within %.2f%% "
-            "(mean alone %.2f%%, noise %.2f%%); ground %td modes, within %.2f%% (noise %.2f%%) (bake %.1f s, fit %.1f "
-            "s)",
+            "(mean alone %.2f%%, noise %.2f%%); ground (its mean) within %.2f%% (noise %.2f%%) (bake %.1f s, fit "
+            "%.1f s)",
             motions[i].clump.name.c_str(), l.bakedFrames.size(), l.vertexNoise * 100.0, l.vertexHeldOutError * 100.0,
-            l.vertexMeanOnlyError * 100.0, l.vertexIrradianceNoise * 100.0, l.ground.basis.cols(),
-            l.groundHeldOutError * 100.0, l.groundIrradianceNoise * 100.0, l.bakeSeconds, l.reduceSeconds);
+            l.vertexMeanOnlyError * 100.0, l.vertexIrradianceNoise * 100.0, l.groundHeldOutError * 100.0,
+            l.groundIrradianceNoise * 100.0, l.bakeSeconds, l.reduceSeconds);
         library.clumps[i].light = libraryLight(l);
     }
 
@@ -141,12 +141,6 @@ Library buildLibrary(const Scene& scene, bool quiet) {
     }
 
     PlacedField placed = placeField(scene, motions, meshes);
-    {
-        // Per-instance colour variation, in field order.
-        Random tint(scene.seed ^ 0x74696e74ull); // "tint"
-        for (gpu::GpuInstance& inst : placed.clumps)
-            inst.tint = tint.uniform();
-    }
     const PlacementStats& fs = placed.stats;
     say("field: %u x %u tiles of %.1f m, %zu clumps and %zu rocks; %.2fx the density of Poisson discs; %u pairs met "
         "on the terrain and were resolved (%u clumps, %u rocks removed), %u left",

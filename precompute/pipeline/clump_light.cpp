@@ -154,6 +154,11 @@ ClumpLight buildClumpLight(const ClumpMotion& motion, const Mesh& meanPose, cons
         out.ground =
             reduceAppearance(groundSamples, baked, motion.clips, basis.frames,
                              std::max(double(params.appearanceMaxError), out.groundNoise), params.maxAppearanceModes);
+        // The run time plays the mean only: where modes would beat the noise they are dropped
+        // rather than stored unplayed, and the held-out error below is the mean's. Their gain
+        // stays in relativeErrorPerMode.
+        out.ground.basis.resize(out.ground.basis.rows(), 0);
+        out.ground.coords.resize(0, out.ground.coords.cols());
     }
 
     // Held-out errors in irradiance under the test sky, summed over the held-out frames.
@@ -190,10 +195,6 @@ LibraryLight libraryLight(const ClumpLight& light) {
         const AppearanceModel& m = light.ground;
         GroundAppearance& g = out.ground;
         g.mean.assign(m.mean.data(), m.mean.data() + m.mean.size());
-        g.modes = uint32_t(m.basis.cols());
-        g.basis.assign(m.basis.data(), m.basis.data() + m.basis.size());
-        g.frames = uint32_t(m.coords.cols());
-        g.coords.assign(m.coords.data(), m.coords.data() + m.coords.size());
         g.bakedFrames = m.bakedFrames;
         g.relativeErrorPerMode = m.relativeErrorPerMode;
     }

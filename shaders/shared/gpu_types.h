@@ -71,7 +71,7 @@ struct GpuInstance {
                           // vertical plane holding the wind direction (instance.vert.glsl)
     float yaw;            // radians about +y
     float boundingRadius; // of the mesh's sphere (unscaled), centred half a radius above the base
-    float tint;           // per-instance colour variation in [0, 1]
+    float pad0;           // keeps the struct 32 bytes (std430); always 0
     uint mesh;            // which mesh (draw bucket) this instance uses
 };
 

@@ -90,7 +90,7 @@ std::vector<gpu::GpuInstance> scatter(uint32_t count, uint32_t seed) {
             glm::vec4(next() * 400.0f - 200.0f, next() * 40.0f - 10.0f, next() * 400.0f - 200.0f, 0.2f + next() * 3.0f);
         inst.boundingRadius = 0.2f + next() * 2.0f;
         inst.yaw = next() * 6.28f;
-        inst.tint = next();
+        next(); // a value once drawn for a tint: skipped, so that the instances stay the same
         inst.mesh = uint32_t(next() * 3.0f) % 3;
         if (next() < 0.5f)
             inst.positionScale.w = -inst.positionScale.w; // mirrored: the same sphere

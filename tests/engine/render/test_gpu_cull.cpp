@@ -199,7 +199,6 @@ TEST_F(Gpu, MirroredInstanceMatchesTheReflectedMesh) {
         inst.positionScale = glm::vec4(0.3f, 0.0f, -0.2f, scale);
         inst.yaw = 0.7f;
         inst.boundingRadius = mesh.boundingRadius;
-        inst.tint = 0.5f;
         FieldScenery scenery{makeTerrainMesh(TerrainParams{0.0f}, glm::vec2(4.0f), 1.0f, 1.0f), wind};
         scenery.sky = testSky();
         FieldRenderer renderer = createFieldRenderer(*context, staticClumps({mesh}),

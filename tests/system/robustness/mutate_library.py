@@ -175,7 +175,7 @@ CASES = {
         g, lambda s: set_u32(section(s, "CLMP"), clump_graph_arrays_at(section(s, "CLMP"))[1], 0x7FFFFFFF)),
     "atlas_size_lie": lambda g: rebuilt(g, lambda s: set_u32(section(s, "ATLS"), 0, 16384)),
     "instance_count_lie": lambda g: rebuilt(g, lambda s: set_u32(section(s, "TFLD"), 0, 0xFFFFFFFF)),
-    "instance_mesh_out_of_range": lambda g: rebuilt(g, lambda s: set_u32(section(s, "TFLD"), 4 + 28, 4096)),
+    "instance_mesh_out_of_range": lambda g: rebuilt(g, lambda s: set_u32(section(s, "TFLD"), 4 + 24, 4096)),
     "instance_position_nan": lambda g: rebuilt(g, lambda s: set_f32(section(s, "TFLD"), 4, float("nan"))),
     "light_count_lie": lambda g: rebuilt(g, lambda s: set_u32(section(s, "LITE"), 0, 7)),
     "sky_frame_count_lie": lambda g: rebuilt(g, lambda s: set_u32(section(s, "SKYD"), 16, 100000)),
