@@ -96,8 +96,9 @@ MEADOW_MOTION_FN uint motionRandom(uint instanceSeed, uint counter) {
 
 // Advances one motion frame (1/30 s). targetLevel is the wind level at the instance (clamped to
 // the last level). Picks one of the frame's edges with probability weight / sum of weights for
-// targetLevel; on a transition the old path keeps playing as blendFrom for blendFrames steps
-// while its weight fades, unless its clip ends first (then the blend stops: no frame to show).
+// targetLevel; on every transition the old path keeps playing as blendFrom for blendFrames steps
+// while its weight fades. Where the old path has no next frame (a jump from a clip's last frame,
+// or its clip ends mid-blend) it holds its last frame while the weight fades, so no jump pops.
 MEADOW_MOTION_FN void motionStep(MEADOW_MOTION_TABLES_PARAM MEADOW_MOTION_INOUT(GpuMotionState) state, uint targetLevel,
                                  uint instanceSeed) {
     uint levelCount = MEADOW_MOTION_TABLES motionLevelCount();
@@ -125,27 +126,21 @@ MEADOW_MOTION_FN void motionStep(MEADOW_MOTION_TABLES_PARAM MEADOW_MOTION_INOUT(
         }
     }
 
-    // The old path of a running blend moves on with its own clip.
+    // The old path of a running blend moves on with its own clip, or holds its last frame.
     if (state.blendFramesLeft > 0u) {
         uint continued = MEADOW_MOTION_TABLES motionNaturalNext(state.blendFrom);
-        if (continued == kMotionNoFrame || state.blendFramesLeft == 1u) {
-            state.blendFramesLeft = 0u;
-        } else {
+        if (continued != kMotionNoFrame)
             state.blendFrom = continued;
-            state.blendFramesLeft -= 1u;
-        }
+        state.blendFramesLeft -= 1u;
     }
 
     // A jump starts a new blend from where the current path would have gone (Kovar et al. 2002
-    // blend across the transition window); a newer jump replaces an older blend.
+    // blend across the transition window), or from the frame it leaves when that ends its clip;
+    // a newer jump replaces an older blend.
     uint natural = MEADOW_MOTION_TABLES motionNaturalNext(node);
     if (next != natural && next != node) {
-        if (natural != kMotionNoFrame) {
-            state.blendFrom = natural;
-            state.blendFramesLeft = MEADOW_MOTION_TABLES motionBlendFrames();
-        } else {
-            state.blendFramesLeft = 0u;
-        }
+        state.blendFrom = natural != kMotionNoFrame ? natural : node;
+        state.blendFramesLeft = MEADOW_MOTION_TABLES motionBlendFrames();
     }
 
     state.frame = next;

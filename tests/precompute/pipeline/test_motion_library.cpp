@@ -100,3 +100,25 @@ TEST(MotionLibrary, WindStepReachesStrongClipsWithinASecond) {
         std::printf("median frames from level %u to %u: %u\n", from, to, steps[500]);
     }
 }
+
+// Every graph jump of a real clump's walk starts a blend, those from a clip's last frame too
+// (meadow_motion_walk measures what that does to the largest per-step vertex movement).
+TEST(MotionLibrary, NoJumpGoesUnblended) {
+    const MotionGraph& g = tinyLibrary().clumps[0].graph;
+    const gpu::MotionTables tables = makeMotionTables(g);
+    gpu::GpuMotionState state = initialMotionState(g, 99u, 0);
+    uint32_t jumps = 0, fromClipEnds = 0;
+    for (uint32_t step = 0; step < 100000; ++step) {
+        const gpu::GpuMotionState before = state;
+        gpu::motionStep(tables, state, (step / 300) % g.levelCount, 99u);
+        if (state.frame == g.naturalNext[before.frame])
+            continue;
+        ++jumps;
+        fromClipEnds += g.naturalNext[before.frame] == gpu::kMotionNoFrame;
+        ASSERT_EQ(state.blendFramesLeft, g.blendFrames) << "step " << step << ": a jump from frame " << before.frame
+                                                        << " to " << state.frame << " started no blend";
+    }
+    std::printf("[ walk     ] %u jumps in 10^5 steps, %u from a clip's last frame, all blended\n", jumps, fromClipEnds);
+    EXPECT_GT(jumps, 100u);
+    EXPECT_GT(fromClipEnds, 0u);
+}
