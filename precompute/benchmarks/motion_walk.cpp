@@ -30,8 +30,9 @@ int main(int argc, char** argv) {
     try {
         const Library lib = loadLibrary(argv[1]);
         const uint32_t steps = argc > 2 ? uint32_t(std::stoul(argv[2])) : 100000u;
-        std::printf("clump, steps, jumps, unblended jumps, cut blends; change of velocity, RMS over vertices (mm per step): "
-                    "natural (p99.9, max), at a jump or in its blend (p99.9, max), at an unblended jump (max)\n");
+        std::printf(
+            "clump, steps, jumps, unblended jumps, cut blends; change of velocity, RMS over vertices (mm per step): "
+            "natural (p99.9, max), at a jump or in its blend (p99.9, max), at an unblended jump (max)\n");
         for (const LibraryClump& clump : lib.clumps) {
             const MotionBasis& m = clump.motion;
             const MotionGraph& g = clump.graph;

@@ -24,9 +24,11 @@ MEADOW_CONST kAnimateGroupSize = 64;
 MEADOW_CONST kLightGroupSize = 64;
 MEADOW_CONST kTonemapGroupSize = 8;
 
-// Motion steps the animate pass takes at most in one frame (a stalled frame skips motion rather
-// than stepping every instance hundreds of times).
-MEADOW_CONST kMaxMotionStepsPerFrame = 8;
+// Motion steps the animate pass takes at most in one frame: 10 s of motion, so the field keeps
+// real time at any frame rate down to 0.1 fps. After a longer stall (a minimised window, a
+// debugger) the motion resumes where it stopped instead of stepping every instance thousands of
+// times.
+MEADOW_CONST kMaxMotionStepsPerFrame = 300;
 // Per clump vertex and light variant: irradiance of the front and back side in RGB, each with its
 // gradient in the vertex's displacement, (E, dE/dx, dE/dy, dE/dz) per side and channel, as half
 // floats: 24 halves in 3 uvec4 (packHalf2x16 pairs: value k of the 24 in word k / 2).

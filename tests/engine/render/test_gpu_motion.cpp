@@ -76,7 +76,7 @@ TEST_F(Gpu, AnimatePassMatchesCpuReference) {
         }
         ASSERT_EQ(differing, 0u) << "instances whose motion state differs after t = " << seconds << " s";
     }
-    // The frames took 0, 1, several and the capped 8 steps; the wind spanned every level.
+    // The frames took 0, 1, several and 62 steps; the wind spanned every level.
     EXPECT_GT(stepsTaken, 20u);
     for (uint32_t level = 0; level < 4; ++level)
         EXPECT_GT(levelsSeen[level], 0u) << "wind level " << level << " never targeted";
@@ -128,4 +128,50 @@ TEST_F(Gpu, VertexShaderPlaysTheMotion) {
     }
     EXPECT_LE(differing, gpuPose.size() / 500);
     EXPECT_GT(differingFromRest, gpuPose.size() / 200); // the pose is not the mean
+}
+
+// Motion keeps real time at any frame rate: after T seconds the instances' motion states are the
+// same whether the frames came every 1/30 s or every 1/2 s (15 steps a frame) or once after 6 s
+// (180 steps); only a stall longer than kMaxMotionStepsPerFrame steps drops motion.
+TEST_F(Gpu, MotionKeepsRealTimeAtAnyFrameRate) {
+    std::vector<FieldClump> clumps = {movingClump(), movingClump(4)};
+    std::vector<gpu::GpuInstance> instances = scatter(2000, 29);
+    for (gpu::GpuInstance& inst : instances)
+        inst.mesh %= 2;
+    FieldScenery scenery = testScenery();
+    scenery.lodCount = kLodCount;
+    scenery.lod = {{120.0f, 50.0f, 20.0f, 8.0f}, 0.1f, 0.2f, 0.05f, 0.0f};
+    auto statesAfter = [&](double seconds, double frameTime) {
+        FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
+        Offscreen offscreen = createOffscreen(*context, {16, 16});
+        FrameState state = frameState(Camera{}, 16, 16);
+        state.wind.baseLevel = 1.5f;
+        state.wind.waveAmplitude = 1.5f;
+        state.wind.gustAmplitude = 1.0f;
+        uint32_t steps = 0;
+        for (int frame = 0; frame * frameTime <= seconds + 1e-9; ++frame) {
+            state.seconds = frame * frameTime + 1e-7; // clear of the tick boundaries floor() meets
+            renderOffscreenFrame(*context, renderer, offscreen, state);
+            gpu::GpuFrame f;
+            std::memcpy(&f, renderer.frameUniforms.mapped(), sizeof(f));
+            steps += f.motion.y;
+        }
+        EXPECT_EQ(steps, uint32_t(std::lround(seconds * 30.0))) << "frames of " << frameTime << " s";
+        std::vector<gpu::GpuMotionState> states(instances.size());
+        readbackBuffer(*context, renderer.motionStates, states.data(), states.size() * sizeof(states[0]));
+        destroyOffscreen(*context, offscreen);
+        destroyFieldRenderer(*context, renderer);
+        return states;
+    };
+    const std::vector<gpu::GpuMotionState> smooth = statesAfter(6.0, 1.0 / 30.0);
+    const std::vector<gpu::GpuMotionState> slow = statesAfter(6.0, 0.5);
+    const std::vector<gpu::GpuMotionState> once = statesAfter(6.0, 6.0);
+    for (const std::vector<gpu::GpuMotionState>* other : {&slow, &once}) {
+        size_t differing = 0;
+        for (size_t i = 0; i < instances.size(); ++i)
+            differing += std::memcmp(&smooth[i], &(*other)[i], sizeof(smooth[i])) != 0;
+        EXPECT_EQ(differing, 0u) << "instances whose motion differs between 1/30 s frames and "
+                                 << (other == &slow ? "1/2 s" : "6 s") << " frames";
+    }
+    EXPECT_EQ(smooth[0].counter, 180u);
 }
