@@ -1,6 +1,7 @@
 #include "render/field_renderer.h"
 
 #include "render/draw_ranges.h"
+#include "render/field_packing.h"
 
 #include "vk/barriers.h"
 #include "vk/context.h"
@@ -9,7 +10,6 @@
 #include "vk/vk_check.h"
 
 #include "core/error.h"
-#include "library/sh.h"
 #include "library/sky_day.h"
 #include "render/cpu_driver.h"
 
@@ -22,31 +22,8 @@ namespace meadow {
 
 namespace {
 
-constexpr uint32_t kSidesTimesChannels = 6; // transfer.h: 2 sides x RGB
-constexpr uint32_t kShCount = 9;            // order 3
-constexpr uint32_t kTransferValues = kSidesTimesChannels * kShCount;
 constexpr double kMotionRate = 30.0; // motion frames per second (the simulation's frame rate)
 constexpr VkFormat kGroundLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-
-// Unshadowed transfer of a plain two-sided surface: each side the clamped cosine about its normal
-// (the front's n, the back's -n) in SH, the same for the three channels, no gradient.
-void appendUnshadowedTransfer(const Mesh& mesh, std::vector<float>& out) {
-    const double band[3] = {M_PI, 2.0 * M_PI / 3.0, M_PI / 4.0};
-    const int bandOf[kShCount] = {0, 1, 1, 1, 2, 2, 2, 2, 2};
-    for (const gpu::GpuVertex& v : mesh.vertices) {
-        glm::dvec3 n(v.normalV);
-        n = glm::length(n) > 1e-12 ? glm::normalize(n) : glm::dvec3(0.0, 1.0, 0.0);
-        double y[2][kShCount];
-        sh::evaluate(3, n, y[0]);
-        sh::evaluate(3, -n, y[1]);
-        for (uint32_t side = 0; side < 2; ++side)
-            for (uint32_t c = 0; c < 3; ++c)
-                for (uint32_t i = 0; i < kShCount; ++i) {
-                    out.push_back(float(band[bandOf[i]] * y[side][i]));
-                    out.insert(out.end(), {0.0f, 0.0f, 0.0f});
-                }
-    }
-}
 
 // Luminance of the irradiance on an upward-facing surface from RGB sky SH of order 3: only the
 // m = 0 terms of bands 0 and 1 and 2 contribute at +y (sh.h's basis).
@@ -56,53 +33,6 @@ float upwardIrradianceLuminance(const std::vector<float>& sh) {
     for (int c = 0; c < 3; ++c)
         e[c] = M_PI * y00 * sh[3 * 0 + c] + 2.0 * M_PI / 3.0 * y10 * sh[3 * 2 + c] + M_PI / 4.0 * y20 * sh[3 * 6 + c];
     return float(std::max(0.0, 0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2]));
-}
-
-void checkClump(const FieldClump& clump, size_t index, uint32_t lodCount) {
-    const std::string what = "field clump " + std::to_string(index);
-    const size_t vertexCount = clump.mesh.vertices.size();
-    if (vertexCount == 0)
-        throw Error(what + " has no vertices");
-    if (clump.lods.size() != lodCount)
-        throw Error(what + " has " + std::to_string(clump.lods.size()) + " levels of detail, not " +
-                    std::to_string(lodCount));
-    for (size_t l = 0; l < clump.lods.size(); ++l) {
-        const FieldLod& lod = clump.lods[l];
-        if (lod.indices.empty() || lod.indices.size() % 3 != 0)
-            throw Error(what + " LOD " + std::to_string(l) + " has no triangles or a partial one");
-        for (uint32_t v : lod.vertices)
-            if (v >= vertexCount)
-                throw Error(what + " LOD " + std::to_string(l) + " names vertex " + std::to_string(v) + " of " +
-                            std::to_string(vertexCount));
-        for (uint32_t i : lod.indices)
-            if (i >= lod.vertices.size())
-                throw Error(what + " LOD " + std::to_string(l) + " has an index past its vertices");
-    }
-    const bool moving = clump.motion.frames > 0;
-    if (moving != (clump.graph.nodeCount > 0))
-        throw Error(what + " has motion without a motion graph or a graph without motion");
-    if (moving) {
-        if (clump.motion.vertexBlock.size() != vertexCount || clump.motion.vertexRowOffset.size() != vertexCount)
-            throw Error(what + ": its motion basis covers " + std::to_string(clump.motion.vertexBlock.size()) +
-                        " vertices, its mesh has " + std::to_string(vertexCount));
-        if (clump.graph.nodeCount != clump.motion.frames || clump.graph.levelCount == 0)
-            throw Error(what + ": its motion graph has " + std::to_string(clump.graph.nodeCount) + " nodes for " +
-                        std::to_string(clump.motion.frames) + " motion frames");
-        for (const MotionBlock& block : clump.motion.blocks)
-            if (block.ranks[0] > 0xffffu)
-                throw Error(what + ": a motion block has more than 65535 modes");
-    }
-    if (!clump.transfer.empty() && clump.transfer.size() != vertexCount * kTransferValues * 4)
-        throw Error(what + ": its light transfer holds " + std::to_string(clump.transfer.size()) +
-                    " values, not 216 per vertex (SH order 3, two sides, RGB, with gradients)");
-    if (clump.groundResolution == 1 ||
-        clump.groundTransfer.size() != size_t(clump.groundResolution) * clump.groundResolution * 27 ||
-        (clump.groundResolution > 0 && !(clump.groundSize > 0.0f)))
-        throw Error(what + ": its ground grid of " + std::to_string(clump.groundResolution) +
-                    " points per side holds " + std::to_string(clump.groundTransfer.size()) +
-                    " values (27 per point) over " + std::to_string(clump.groundSize) + " m");
-    if (clump.yawBins == 0 || !(clump.yawHigh >= clump.yawLow))
-        throw Error(what + ": its yaw range or yaw bins are empty");
 }
 
 } // namespace
@@ -148,7 +78,7 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
     if (clumps.size() > 0xffff)
         throw Error("the field has " + std::to_string(clumps.size()) + " clumps; the renderer draws at most 65535");
     for (size_t c = 0; c < clumps.size(); ++c)
-        checkClump(clumps[c], c, scenery.lodCount);
+        checkFieldClump(clumps[c], c, scenery.lodCount);
 
     FieldRenderer r;
     try {
@@ -162,17 +92,8 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
 
 namespace {
 
-void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClump> clumps,
-                       std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
-                       const FieldScenery& scenery) {
-    const sky::SkyDay& day = scenery.sky;
-    r.instanceCount = static_cast<uint32_t>(instances.size());
-    r.clumpCount = static_cast<uint32_t>(clumps.size());
-    r.lodCount = scenery.lodCount;
-    r.meshCount = r.clumpCount * r.lodCount;
-    r.lodParams = scenery.lod;
-    r.skyDay = day;
-
+// The passes' pipelines, and the mirror plane the field's mirrored instances reflect about.
+void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery) {
     r.animate = createComputePipeline(ctx, "animate.comp");
     r.cull = createComputePipeline(ctx, "cull.comp");
     r.light = createComputePipeline(ctx, "light.comp", sizeof(uint32_t));
@@ -195,185 +116,41 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);
     r.windAzimuth = std::atan2(wind.x, wind.y); // light/sh.h: from +z towards +x
+}
 
-    // Every clump's data goes into shared buffers; GpuClump says where.
-    std::vector<gpu::GpuClump> gpuClumps;
-    std::vector<gpu::GpuLodVertex> lodVertices;
-    std::vector<uint32_t> indices;
-    std::vector<float> motionData;
-    std::vector<uint32_t> motionGraph;
-    std::vector<float> transfer;
-    uint64_t lightVec4s = 0;
-    std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
-    for (size_t ci = 0; ci < clumps.size(); ++ci) {
-        const FieldClump& clump = clumps[ci];
-        const MotionBasis& motion = clump.motion;
-        const bool moving = motion.frames > 0;
-        const uint32_t vertexCount = uint32_t(clump.mesh.vertices.size());
-        gpu::GpuClump g{};
-        const uint32_t basisBase = uint32_t(motionData.size());
-        if (moving)
-            motionData.insert(motionData.end(), motion.basis.begin(), motion.basis.end());
-        const uint32_t coordBase = uint32_t(motionData.size());
-        if (moving)
-            motionData.insert(motionData.end(), motion.coords.begin(), motion.coords.end());
-        g.motion = gpu::uvec4(0u, coordBase, moving ? motion.modesPerFrame() : 0u, moving ? motion.frames : 1u);
-
-        // The walk's tables; a static clump gets one frame that holds still.
-        MotionGraph still;
-        still.nodeCount = 1;
-        still.levelCount = 1;
-        still.edgeCount = 1;
-        still.edgeStart = {0, 1};
-        still.edgeTarget = {0};
-        still.edgeWeight = {1};
-        still.naturalNext = {gpu::kMotionNoFrame};
-        const MotionGraph& graph = moving ? clump.graph : still;
-        const uint32_t startAt = uint32_t(motionGraph.size());
-        motionGraph.insert(motionGraph.end(), graph.edgeStart.begin(), graph.edgeStart.end());
-        const uint32_t targetAt = uint32_t(motionGraph.size());
-        motionGraph.insert(motionGraph.end(), graph.edgeTarget.begin(), graph.edgeTarget.end());
-        const uint32_t weightAt = uint32_t(motionGraph.size());
-        motionGraph.insert(motionGraph.end(), graph.edgeWeight.begin(), graph.edgeWeight.end());
-        const uint32_t nextAt = uint32_t(motionGraph.size());
-        motionGraph.insert(motionGraph.end(), graph.naturalNext.begin(), graph.naturalNext.end());
-        g.graph = gpu::uvec4(startAt, targetAt, weightAt, nextAt);
-        g.graphSizes = gpu::uvec4(graph.edgeCount, graph.levelCount, std::max(graph.blendFrames, 1u), 0u);
-
-        for (uint32_t l = 0; l < r.lodCount; ++l) {
-            const FieldLod& lod = clump.lods[l];
-            gpu::GpuDrawIndexedCommand& draw = draws[ci * r.lodCount + l];
-            draw.indexCount = uint32_t(lod.indices.size());
-            draw.firstIndex = uint32_t(indices.size());
-            draw.vertexOffset = int32_t(lodVertices.size());
-            for (uint32_t v : lod.vertices) {
-                gpu::GpuLodVertex lv{clump.mesh.vertices[v].positionU, clump.mesh.vertices[v].normalV,
-                                     gpu::uvec4(0u, 0u, v, l << 16)};
-                if (moving) {
-                    const MotionBlock& block = motion.blocks[motion.vertexBlock[v]];
-                    lv.motion = gpu::uvec4(basisBase + motion.vertexRowOffset[v], block.coordOffset, v,
-                                           block.ranks[std::min(l, kLodCount - 1)] | (l << 16));
-                }
-                lodVertices.push_back(lv);
-            }
-            indices.insert(indices.end(), lod.indices.begin(), lod.indices.end());
-            r.meshTriangles.push_back(uint32_t(lod.indices.size() / 3));
-        }
-
-        const uint32_t transferBase = uint32_t(transfer.size() / 4);
-        if (clump.transfer.empty())
-            appendUnshadowedTransfer(clump.mesh, transfer);
-        else
-            transfer.insert(transfer.end(), clump.transfer.begin(), clump.transfer.end());
-        const uint32_t variants = 2 * clump.yawBins;
-        g.light = gpu::uvec4(uint32_t(lightVec4s), clump.yawBins, transferBase, vertexCount);
-        lightVec4s += uint64_t(vertexCount) * variants * gpu::kLightVec4sPerVertex;
-        r.lightVertices.push_back(vertexCount * variants);
-        const float range = clump.yawHigh - clump.yawLow;
-        g.yawBins = range > 0.0f
-                        ? glm::vec4(clump.yawLow, float(clump.yawBins) / range, range / float(clump.yawBins), 0.0f)
-                        : glm::vec4(clump.yawLow, 0.0f, 0.0f, 0.0f);
-        g.albedo = clump.albedo;
-        if (clump.groundResolution >= 2) {
-            const uint32_t points = clump.groundResolution * clump.groundResolution;
-            g.ground = gpu::uvec4(uint32_t(transfer.size() / 4), uint32_t(lightVec4s), clump.groundResolution, 0u);
-            for (float t : clump.groundTransfer)
-                transfer.insert(transfer.end(), {t, 0.0f, 0.0f, 0.0f});
-            lightVec4s += uint64_t(points) * variants;
-            r.lightVertices.back() += points * variants;
-            g.yawBins.w = clump.groundSize;
-        }
-        gpuClumps.push_back(g);
-    }
-    if (lightVec4s > (uint64_t(1) << 31) / 16 || motionData.size() > (size_t(1) << 31))
-        throw Error("the field's clumps need more than 2 GiB of light or motion data");
-
-    // Each bucket's range holds every instance of its clump: an instance lands in at most one
-    // range per LOD of its clump (two while crossfading, never twice in one).
-    std::vector<uint32_t> perClump(r.clumpCount, 0);
-    std::vector<gpu::GpuMotionState> states(instances.size());
-    for (size_t i = 0; i < instances.size(); ++i) {
-        const gpu::GpuInstance& inst = instances[i];
-        if (inst.mesh >= r.clumpCount)
-            throw Error("a field instance names clump " + std::to_string(inst.mesh) + " of " +
-                        std::to_string(r.clumpCount));
-        perClump[inst.mesh]++;
-        const FieldClump& clump = clumps[inst.mesh];
-        // Each instance starts at its own frame so that copies never move in lock step.
-        if (clump.motion.frames > 0)
-            states[i] = initialMotionState(clump.graph, uint32_t(i));
-    }
-    // The ground light map covers every instance's ground grid, at about 8 cm a texel.
-    glm::vec2 low(1e30f), high(-1e30f);
-    for (const gpu::GpuInstance& inst : instances) {
-        const float reach = 0.75f * clumps[inst.mesh].groundSize * std::abs(inst.positionScale.w); // > half diagonal
-        if (clumps[inst.mesh].groundResolution < 2)
-            continue;
-        low = glm::min(low, glm::vec2(inst.positionScale.x, inst.positionScale.z) - reach);
-        high = glm::max(high, glm::vec2(inst.positionScale.x, inst.positionScale.z) + reach);
-    }
-    VkExtent2D mapSize{1, 1};
-    if (low.x < high.x) {
-        const glm::vec2 extent = high - low;
-        mapSize = {std::clamp(uint32_t(extent.x / 0.08f), 16u, 2048u),
-                   std::clamp(uint32_t(extent.y / 0.08f), 16u, 2048u)};
-        r.groundRect = glm::vec4(low, 1.0f / extent.x, 1.0f / extent.y);
-    } else {
-        r.groundRect = glm::vec4(0.0f, 0.0f, 0.0f, 0.0f); // nothing casts: every point reads the open-ground texel
-    }
-    uint32_t first = 0;
-    for (uint32_t m = 0; m < r.meshCount; ++m) {
-        draws[m].firstInstance = first;
-        r.drawCapacity.push_back(perClump[m / r.lodCount]);
-        first += perClump[m / r.lodCount];
-    }
-    r.lodVertexCount = lodVertices.size();
-    r.visibleCount = first;
-    // Every range a draw reads, against the buffer it reads it from, before anything is drawn.
+// Every range a draw reads, against the buffer it reads it from, before anything is drawn.
+void checkDraws(const FieldPacking& p) {
     std::vector<std::string> rangeProblems =
-        checkDrawRanges(draws, {indices, r.lodVertexCount, r.visibleCount, r.drawCapacity});
+        checkDrawRanges(p.draws, {p.indices, p.lodVertices.size(), p.visibleCount, p.drawCapacity});
     if (!rangeProblems.empty())
         throw Error("the field's draws read outside their buffers: " + rangeProblems.front() + " (" +
                     std::to_string(rangeProblems.size()) + " problems)");
-    const size_t skyStride = gpu::kSkyFrameHeaderFloats + size_t(day.imageWidth) * day.imageHeight * 3;
+}
 
-    // Everything the field puts in device memory, checked against what the device has before the
-    // first allocation: a field too large fails here with the figures, not with a device lost later.
+// Everything the field puts in device memory, checked against what the device has before the
+// first allocation: a field too large fails here with the figures, not with a device lost later.
+void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size_t clumpCount, const RgbaImage& atlas,
+                 const FieldScenery& scenery, VkExtent2D mapSize) {
+    const sky::SkyDay& day = scenery.sky;
     const uint64_t perInstanceBytes =
         sizeof(gpu::GpuInstance) + sizeof(gpu::GpuMotionState) + sizeof(float) + sizeof(gpu::GpuDrawInstance);
     const uint64_t neededBytes =
-        uint64_t(instances.size()) * perInstanceBytes + uint64_t(first) * sizeof(uint32_t) +
-        gpuClumps.size() * sizeof(gpu::GpuClump) + lodVertices.size() * sizeof(gpu::GpuLodVertex) +
-        indices.size() * sizeof(uint32_t) + (motionData.size() + transfer.size()) * sizeof(float) +
-        motionGraph.size() * sizeof(uint32_t) + lightVec4s * 16 + skyStride * day.frames.size() * sizeof(float) +
-        2 * draws.size() * sizeof(gpu::GpuDrawIndexedCommand) + uint64_t(atlas.width) * atlas.height * 4 +
+        uint64_t(instanceCount) * perInstanceBytes + uint64_t(p.visibleCount) * sizeof(uint32_t) +
+        p.clumps.size() * sizeof(gpu::GpuClump) + p.lodVertices.size() * sizeof(gpu::GpuLodVertex) +
+        p.indices.size() * sizeof(uint32_t) + (p.motionData.size() + p.transfer.size()) * sizeof(float) +
+        p.motionGraph.size() * sizeof(uint32_t) + p.lightVec4s * 16 +
+        skyFrameFloats(day) * day.frames.size() * sizeof(float) +
+        2 * p.draws.size() * sizeof(gpu::GpuDrawIndexedCommand) + uint64_t(atlas.width) * atlas.height * 4 +
         uint64_t(mapSize.width) * mapSize.height * 8 + scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex) +
         scenery.terrain.indices.size() * sizeof(uint32_t);
     checkFieldMemory(ctx, neededBytes,
-                     "the field (" + std::to_string(instances.size()) + " instances of " +
-                         std::to_string(clumps.size()) + " meshes)");
+                     "the field (" + std::to_string(instanceCount) + " instances of " + std::to_string(clumpCount) +
+                         " meshes)");
+}
 
-    r.groundLight = createImage2D(ctx, mapSize, kGroundLightFormat,
-                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
-
-    // The sky day: per frame its SH, sun and backdrop (gpu::kSkyFrameHeaderFloats).
-    std::vector<float> skyData(skyStride * day.frames.size(), 0.0f);
-    for (size_t f = 0; f < day.frames.size(); ++f) {
-        const sky::SkyFrame& frame = day.frames[f];
-        float* out = &skyData[f * skyStride];
-        if (frame.sh.size() != 27 || frame.image.size() != skyStride - gpu::kSkyFrameHeaderFloats)
-            throw Error("sky frame " + std::to_string(f) + " has the wrong number of SH values or pixels");
-        std::copy(frame.sh.begin(), frame.sh.end(), out);
-        for (int k = 0; k < 3; ++k) {
-            out[28 + k] = frame.sunDirection[k];
-            out[32 + k] = frame.sunRadiance[k];
-        }
-        std::copy(frame.image.begin(), frame.image.end(), out + gpu::kSkyFrameHeaderFloats);
-    }
-    r.brightestIrradiance = 0.0f;
-    for (const sky::SkyFrame& frame : day.frames)
-        r.brightestIrradiance = std::max(r.brightestIrradiance, upwardIrradianceLuminance(frame.sh));
-
+// The field's buffers, filled with what packField made; the atlas, the sampler and the terrain.
+void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::span<const gpu::GpuInstance> instances,
+                   const std::vector<float>& skyData, const RgbaImage& atlas, const FieldScenery& scenery) {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     auto deviceBuffer = [&](Buffer& buffer, const void* data, size_t bytes, VkBufferUsageFlags extra = 0) {
         buffer = createBuffer(ctx, std::max<size_t>(bytes, 16), storage | extra, MemoryUse::Device);
@@ -382,32 +159,32 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
     };
     r.frameUniforms = createBuffer(ctx, sizeof(gpu::GpuFrame), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload);
     deviceBuffer(r.instances, instances.data(), instances.size_bytes());
-    deviceBuffer(r.motionStates, states.data(), states.size() * sizeof(gpu::GpuMotionState),
+    deviceBuffer(r.motionStates, p.states.data(), p.states.size() * sizeof(gpu::GpuMotionState),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     const std::vector<float> lodStart(instances.size(), 0.0f);
     deviceBuffer(r.lodState, lodStart.data(), lodStart.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    deviceBuffer(r.clumps, gpuClumps.data(), gpuClumps.size() * sizeof(gpu::GpuClump),
+    deviceBuffer(r.clumps, p.clumps.data(), p.clumps.size() * sizeof(gpu::GpuClump),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT); // read back by the CPU-driven path
     deviceBuffer(r.drawInstances, nullptr, instances.size() * sizeof(gpu::GpuDrawInstance),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    deviceBuffer(r.lodVertices, lodVertices.data(), lodVertices.size() * sizeof(gpu::GpuLodVertex));
-    deviceBuffer(r.motionData, motionData.data(), motionData.size() * sizeof(float));
-    deviceBuffer(r.motionGraph, motionGraph.data(), motionGraph.size() * sizeof(uint32_t));
-    deviceBuffer(r.transfer, transfer.data(), transfer.size() * sizeof(float));
-    deviceBuffer(r.vertexLight, nullptr, size_t(lightVec4s) * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.lodVertices, p.lodVertices.data(), p.lodVertices.size() * sizeof(gpu::GpuLodVertex));
+    deviceBuffer(r.motionData, p.motionData.data(), p.motionData.size() * sizeof(float));
+    deviceBuffer(r.motionGraph, p.motionGraph.data(), p.motionGraph.size() * sizeof(uint32_t));
+    deviceBuffer(r.transfer, p.transfer.data(), p.transfer.size() * sizeof(float));
+    deviceBuffer(r.vertexLight, nullptr, size_t(p.lightVec4s) * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.skyData, skyData.data(), skyData.size() * sizeof(float));
-    r.indices = createBuffer(ctx, indices.size() * sizeof(uint32_t),
+    r.indices = createBuffer(ctx, p.indices.size() * sizeof(uint32_t),
                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT, // read back by tests (draw_ranges.h)
                              MemoryUse::Device);
-    uploadToBuffer(ctx, r.indices, indices.data(), r.indices.size);
-    VkDeviceSize drawBytes = draws.size() * sizeof(gpu::GpuDrawIndexedCommand);
-    deviceBuffer(r.drawCommands, draws.data(), drawBytes,
+    uploadToBuffer(ctx, r.indices, p.indices.data(), r.indices.size);
+    VkDeviceSize drawBytes = p.draws.size() * sizeof(gpu::GpuDrawIndexedCommand);
+    deviceBuffer(r.drawCommands, p.draws.data(), drawBytes,
                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     r.drawCommandTemplate = createBuffer(
         ctx, drawBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
-    uploadToBuffer(ctx, r.drawCommandTemplate, draws.data(), drawBytes);
-    deviceBuffer(r.visibleList, nullptr, size_t(first) * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    uploadToBuffer(ctx, r.drawCommandTemplate, p.draws.data(), drawBytes);
+    deviceBuffer(r.visibleList, nullptr, size_t(p.visibleCount) * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.stats, nullptr, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     r.statsReadback =
         createBuffer(ctx, sizeof(gpu::GpuCullStats) + drawBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
@@ -422,6 +199,37 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
                      VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
     uploadToBuffer(ctx, r.terrainIndices, scenery.terrain.indices.data(), r.terrainIndices.size);
     r.terrainIndexCount = uint32_t(scenery.terrain.indices.size());
+}
+
+void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClump> clumps,
+                       std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
+                       const FieldScenery& scenery) {
+    r.instanceCount = static_cast<uint32_t>(instances.size());
+    r.clumpCount = static_cast<uint32_t>(clumps.size());
+    r.lodCount = scenery.lodCount;
+    r.meshCount = r.clumpCount * r.lodCount;
+    r.lodParams = scenery.lod;
+    r.skyDay = scenery.sky;
+    createPipelines(ctx, r, scenery);
+
+    const FieldPacking packed = packField(clumps, instances, r.lodCount);
+    r.meshTriangles = packed.meshTriangles;
+    r.lightVertices = packed.lightVertices;
+    r.drawCapacity = packed.drawCapacity;
+    r.lodVertexCount = packed.lodVertices.size();
+    r.visibleCount = packed.visibleCount;
+    const GroundLightMapLayout map = groundLightMapLayout(clumps, instances);
+    r.groundRect = map.rect;
+    checkDraws(packed);
+    checkMemory(ctx, packed, instances.size(), clumps.size(), atlas, scenery, map.size);
+
+    r.groundLight = createImage2D(ctx, map.size, kGroundLightFormat,
+                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    const std::vector<float> skyData = packSkyDay(scenery.sky);
+    r.brightestIrradiance = 0.0f;
+    for (const sky::SkyFrame& frame : scenery.sky.frames)
+        r.brightestIrradiance = std::max(r.brightestIrradiance, upwardIrradianceLuminance(frame.sh));
+    createBuffers(ctx, r, packed, instances, skyData, atlas, scenery);
 }
 
 } // namespace
@@ -547,18 +355,22 @@ void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
     }
 }
 
-void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t, GpuTimer* timer) {
-    if (timer)
-        beginTimestamps(ctx, *timer, cmd);
+namespace {
 
-    // Reset the draws' instance counts (from the template) and the statistics. The previous frame
-    // read them as indirect commands, in the vertex shader and as copy sources.
+void markPass(GpuTimer* timer, VkCommandBuffer cmd, const char* pass) {
+    if (timer)
+        markTimestamp(*timer, cmd, pass);
+}
+
+// Resets the draws' instance counts (from the template) and the statistics, or, on the CPU-driven
+// path, records the host's uploads of what animate and cull would write. The previous frame read
+// them as indirect commands, in the vertex shader and as copy sources.
+void recordReset(FieldRenderer& r, VkCommandBuffer cmd) {
     barrier(cmd,
             access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead |
                 access::kComputeReadWrite | access::kTransferRead,
             access::kTransferWrite | access::kComputeReadWrite);
     if (r.cpuDriver) {
-        // The CPU-driven path: what animate and cull would write comes from the host.
         if (r.cullThisFrame)
             cpuDriverRecordUploads(*r.cpuDriver, r, cmd);
     } else if (r.cullThisFrame) {
@@ -566,29 +378,33 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
         vkCmdCopyBuffer(cmd, r.drawCommandTemplate.buffer, r.drawCommands.buffer, 1, &drawsRegion);
         vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
     }
+}
 
-    // Motion: the states step at the wind of this frame (the previous frame's vertex shader read
-    // them: ordered by the barrier above).
-    if (!r.cpuDriver) {
-        bindPipeline(ctx, cmd, r.animate, {r.frameUniforms, r.instances, r.clumps, r.motionGraph, r.motionStates});
-        dispatchCovering(cmd, r.animate, r.instanceCount);
-    }
-    if (timer)
-        markTimestamp(*timer, cmd, "animate");
+// Motion: the states step at the wind of this frame (the previous frame's vertex shader read
+// them: ordered by the reset's barrier).
+void recordAnimatePass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
+    if (r.cpuDriver)
+        return;
+    bindPipeline(ctx, cmd, r.animate, {r.frameUniforms, r.instances, r.clumps, r.motionGraph, r.motionStates});
+    dispatchCovering(cmd, r.animate, r.instanceCount);
+}
 
-    // The cull pass reads the motion states animate wrote (for the draw records).
+// The cull pass reads the motion states animate wrote (for the draw records) and the reset
+// draws; its barrier also hands the reset and the CPU-driven uploads to the draws.
+void recordCullPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
     barrier(cmd, access::kTransferWrite | access::kComputeReadWrite,
             access::kComputeReadWrite | access::kIndirectRead | access::kVertexShaderRead | access::kTransferRead);
-    if (r.cullThisFrame && !r.cpuDriver) {
-        bindPipeline(ctx, cmd, r.cull,
-                     {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState, r.clumps,
-                      r.motionStates, r.drawInstances});
-        dispatchCovering(cmd, r.cull, r.instanceCount);
-    }
-    if (timer)
-        markTimestamp(*timer, cmd, "cull");
+    if (!r.cullThisFrame || r.cpuDriver)
+        return;
+    bindPipeline(ctx, cmd, r.cull,
+                 {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState, r.clumps,
+                  r.motionStates, r.drawInstances});
+    dispatchCovering(cmd, r.cull, r.instanceCount);
+}
 
-    // Light: every clump vertex and variant onto the sky, when the sky changed.
+// Light: every clump vertex and variant onto the sky, when the sky changed. Its barrier hands the
+// compute passes' results (the cull's draws and draw records, the light) to everything drawn.
+void recordLightPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
     if (r.lightThisFrame) {
         bindPipeline(ctx, cmd, r.light, {r.frameUniforms, r.clumps, r.transfer, r.skyData, r.vertexLight});
         for (uint32_t c = 0; c < r.clumpCount; ++c) {
@@ -598,42 +414,48 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     }
     barrier(cmd, access::kComputeReadWrite,
             access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead);
-    if (r.lightThisFrame) {
-        // The ground light map: cleared to open ground, then every instance's grid multiplied in.
-        imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kFragmentShaderRead,
-                     VK_IMAGE_LAYOUT_UNDEFINED, access::kColorAttachmentWrite,
-                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-        VkRenderingAttachmentInfo map{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        map.imageView = r.groundLight.view;
-        map.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        map.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        map.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        map.clearValue.color = {{1.0f, 1.0f, 1.0f, 1.0f}};
-        VkRenderingInfo mapPass{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        mapPass.renderArea = {{0, 0}, r.groundLight.extent};
-        mapPass.layerCount = 1;
-        mapPass.colorAttachmentCount = 1;
-        mapPass.pColorAttachments = &map;
-        vkCmdBeginRendering(cmd, &mapPass);
-        VkViewport mapViewport{0.0f, 0.0f, float(r.groundLight.extent.width), float(r.groundLight.extent.height),
-                               0.0f, 1.0f};
-        VkRect2D mapScissor{{0, 0}, r.groundLight.extent};
-        vkCmdSetViewport(cmd, 0, 1, &mapViewport);
-        vkCmdSetScissor(cmd, 0, 1, &mapScissor);
-        if (r.groundRect.z > 0.0f) {
-            bindPipeline(ctx, cmd, r.groundMap, {r.frameUniforms, r.instances, r.clumps, r.vertexLight});
-            vkCmdPushConstants(cmd, r.groundMap.layout, r.groundMap.pushConstantStages, 0, sizeof(glm::vec4),
-                               &r.mirrorNormal);
-            vkCmdDraw(cmd, 6, r.instanceCount, 0, 0);
-        }
-        vkCmdEndRendering(cmd);
-        imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
-                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kFragmentShaderRead,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    }
-    if (timer)
-        markTimestamp(*timer, cmd, "light");
+}
 
+// The ground light map, with the light: cleared to open ground, then every instance's grid
+// multiplied in; left ready for the terrain's fragment shader.
+void recordGroundLightMap(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
+    if (!r.lightThisFrame)
+        return;
+    imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kFragmentShaderRead,
+                 VK_IMAGE_LAYOUT_UNDEFINED, access::kColorAttachmentWrite, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    VkRenderingAttachmentInfo map{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    map.imageView = r.groundLight.view;
+    map.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    map.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    map.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    map.clearValue.color = {{1.0f, 1.0f, 1.0f, 1.0f}};
+    VkRenderingInfo mapPass{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    mapPass.renderArea = {{0, 0}, r.groundLight.extent};
+    mapPass.layerCount = 1;
+    mapPass.colorAttachmentCount = 1;
+    mapPass.pColorAttachments = &map;
+    vkCmdBeginRendering(cmd, &mapPass);
+    VkViewport mapViewport{0.0f, 0.0f, float(r.groundLight.extent.width), float(r.groundLight.extent.height),
+                           0.0f, 1.0f};
+    VkRect2D mapScissor{{0, 0}, r.groundLight.extent};
+    vkCmdSetViewport(cmd, 0, 1, &mapViewport);
+    vkCmdSetScissor(cmd, 0, 1, &mapScissor);
+    if (r.groundRect.z > 0.0f) {
+        bindPipeline(ctx, cmd, r.groundMap, {r.frameUniforms, r.instances, r.clumps, r.vertexLight});
+        vkCmdPushConstants(cmd, r.groundMap.layout, r.groundMap.pushConstantStages, 0, sizeof(glm::vec4),
+                           &r.mirrorNormal);
+        vkCmdDraw(cmd, 6, r.instanceCount, 0, 0);
+    }
+    vkCmdEndRendering(cmd);
+    imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kFragmentShaderRead,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+// The HDR image and depth: near to far, so that depth testing rejects as much as it can before
+// shading, the clumps LOD by LOD (LOD 0 is nearest; buckets are clump-major, so LOD l's are every
+// lodCount-th command), then the terrain, then the sky where nothing else was drawn.
+void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
     // The previous frame's tonemap read the HDR image and wrote the LDR image; the contents are
     // not needed again, so both start from UNDEFINED.
     imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeRead | access::kTransferRead,
@@ -665,9 +487,6 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 
-    // Near to far, so that depth testing rejects as much as it can before shading: the clumps LOD
-    // by LOD (LOD 0 is nearest; buckets are clump-major, so LOD l's are every lodCount-th command),
-    // then the terrain, then the sky where nothing else was drawn.
     bindPipeline(ctx, cmd, r.instance,
                  {r.frameUniforms, r.visibleList, r.drawInstances, r.clumps, r.lodVertices, r.motionData, r.vertexLight,
                   Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
@@ -686,9 +505,10 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     bindPipeline(ctx, cmd, r.sky, {r.frameUniforms, r.skyData});
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
-    if (timer)
-        markTimestamp(*timer, cmd, "draw");
+}
 
+// HDR -> LDR: the draw's image, read in GENERAL layout by a compute pass that writes the LDR one.
+void recordTonemapPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
     imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
     imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite | access::kTransferRead,
@@ -697,15 +517,37 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
         ctx, cmd, r.tonemap,
         {r.frameUniforms, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL), Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
     dispatchCovering(cmd, r.tonemap, t.extent.width, t.extent.height);
-    if (timer)
-        markTimestamp(*timer, cmd, "tonemap");
+}
 
+// The cull's statistics and the draws' instance counts, copied where the host reads them
+// (readFieldStats) once the frame is done.
+void recordStatsReadback(FieldRenderer& r, VkCommandBuffer cmd) {
     barrier(cmd, access::kComputeReadWrite | access::kIndirectRead, access::kTransferRead);
     VkBufferCopy statsRegion{0, 0, sizeof(gpu::GpuCullStats)};
     vkCmdCopyBuffer(cmd, r.stats.buffer, r.statsReadback.buffer, 1, &statsRegion);
     VkBufferCopy drawsBack{0, sizeof(gpu::GpuCullStats), r.drawCommands.size};
     vkCmdCopyBuffer(cmd, r.drawCommands.buffer, r.statsReadback.buffer, 1, &drawsBack);
     barrier(cmd, access::kTransferWrite, access::kHostRead);
+}
+
+} // namespace
+
+void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t, GpuTimer* timer) {
+    if (timer)
+        beginTimestamps(ctx, *timer, cmd);
+    recordReset(r, cmd);
+    recordAnimatePass(ctx, r, cmd);
+    markPass(timer, cmd, "animate");
+    recordCullPass(ctx, r, cmd);
+    markPass(timer, cmd, "cull");
+    recordLightPass(ctx, r, cmd);
+    recordGroundLightMap(ctx, r, cmd);
+    markPass(timer, cmd, "light");
+    recordDrawPass(ctx, r, cmd, t);
+    markPass(timer, cmd, "draw");
+    recordTonemapPass(ctx, r, cmd, t);
+    markPass(timer, cmd, "tonemap");
+    recordStatsReadback(r, cmd);
 }
 
 FieldStats readFieldStats(const FieldRenderer& r) {

@@ -1,0 +1,269 @@
+#include "render/field_packing.h"
+
+#include "core/error.h"
+#include "library/sh.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace meadow {
+
+namespace {
+
+constexpr uint32_t kSidesTimesChannels = 6; // transfer.h: 2 sides x RGB
+constexpr uint32_t kShCount = 9;            // order 3
+constexpr uint32_t kTransferValues = kSidesTimesChannels * kShCount;
+
+// Unshadowed transfer of a plain two-sided surface: each side the clamped cosine about its normal
+// (the front's n, the back's -n) in SH, the same for the three channels, no gradient.
+void appendUnshadowedTransfer(const Mesh& mesh, std::vector<float>& out) {
+    const double band[3] = {M_PI, 2.0 * M_PI / 3.0, M_PI / 4.0};
+    const int bandOf[kShCount] = {0, 1, 1, 1, 2, 2, 2, 2, 2};
+    for (const gpu::GpuVertex& v : mesh.vertices) {
+        glm::dvec3 n(v.normalV);
+        n = glm::length(n) > 1e-12 ? glm::normalize(n) : glm::dvec3(0.0, 1.0, 0.0);
+        double y[2][kShCount];
+        sh::evaluate(3, n, y[0]);
+        sh::evaluate(3, -n, y[1]);
+        for (uint32_t side = 0; side < 2; ++side)
+            for (uint32_t c = 0; c < 3; ++c)
+                for (uint32_t i = 0; i < kShCount; ++i) {
+                    out.push_back(float(band[bandOf[i]] * y[side][i]));
+                    out.insert(out.end(), {0.0f, 0.0f, 0.0f});
+                }
+    }
+}
+
+// A clump's basis rows and coordinates into motionData: GpuClump::motion.
+void packMotion(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g, uint32_t& basisBase) {
+    const MotionBasis& motion = clump.motion;
+    const bool moving = motion.frames > 0;
+    basisBase = uint32_t(p.motionData.size());
+    if (moving)
+        p.motionData.insert(p.motionData.end(), motion.basis.begin(), motion.basis.end());
+    const uint32_t coordBase = uint32_t(p.motionData.size());
+    if (moving)
+        p.motionData.insert(p.motionData.end(), motion.coords.begin(), motion.coords.end());
+    g.motion = gpu::uvec4(0u, coordBase, moving ? motion.modesPerFrame() : 0u, moving ? motion.frames : 1u);
+}
+
+// The walk's tables into motionGraph: GpuClump::graph and graphSizes. A static clump gets one
+// frame that holds still.
+void packGraph(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
+    MotionGraph still;
+    still.nodeCount = 1;
+    still.levelCount = 1;
+    still.edgeCount = 1;
+    still.edgeStart = {0, 1};
+    still.edgeTarget = {0};
+    still.edgeWeight = {1};
+    still.naturalNext = {gpu::kMotionNoFrame};
+    const MotionGraph& graph = clump.motion.frames > 0 ? clump.graph : still;
+    std::vector<uint32_t>& out = p.motionGraph;
+    const uint32_t startAt = uint32_t(out.size());
+    out.insert(out.end(), graph.edgeStart.begin(), graph.edgeStart.end());
+    const uint32_t targetAt = uint32_t(out.size());
+    out.insert(out.end(), graph.edgeTarget.begin(), graph.edgeTarget.end());
+    const uint32_t weightAt = uint32_t(out.size());
+    out.insert(out.end(), graph.edgeWeight.begin(), graph.edgeWeight.end());
+    const uint32_t nextAt = uint32_t(out.size());
+    out.insert(out.end(), graph.naturalNext.begin(), graph.naturalNext.end());
+    g.graph = gpu::uvec4(startAt, targetAt, weightAt, nextAt);
+    g.graphSizes = gpu::uvec4(graph.edgeCount, graph.levelCount, std::max(graph.blendFrames, 1u), 0u);
+}
+
+// Each LOD's vertices (with their motion rows) and triangles, and its draw: buckets clump-major.
+void packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount, uint32_t basisBase, FieldPacking& p) {
+    const MotionBasis& motion = clump.motion;
+    const bool moving = motion.frames > 0;
+    for (uint32_t l = 0; l < lodCount; ++l) {
+        const FieldLod& lod = clump.lods[l];
+        gpu::GpuDrawIndexedCommand& draw = p.draws[clumpIndex * lodCount + l];
+        draw.indexCount = uint32_t(lod.indices.size());
+        draw.firstIndex = uint32_t(p.indices.size());
+        draw.vertexOffset = int32_t(p.lodVertices.size());
+        for (uint32_t v : lod.vertices) {
+            gpu::GpuLodVertex lv{clump.mesh.vertices[v].positionU, clump.mesh.vertices[v].normalV,
+                                 gpu::uvec4(0u, 0u, v, l << 16)};
+            if (moving) {
+                const MotionBlock& block = motion.blocks[motion.vertexBlock[v]];
+                lv.motion = gpu::uvec4(basisBase + motion.vertexRowOffset[v], block.coordOffset, v,
+                                       block.ranks[std::min(l, kLodCount - 1)] | (l << 16));
+            }
+            p.lodVertices.push_back(lv);
+        }
+        p.indices.insert(p.indices.end(), lod.indices.begin(), lod.indices.end());
+        p.meshTriangles.push_back(uint32_t(lod.indices.size() / 3));
+    }
+}
+
+// The clump's transfer (and its ground grid's) into transfer, and where the light pass writes
+// its light variants: GpuClump::light, yawBins, albedo and ground.
+void packLight(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
+    const uint32_t vertexCount = uint32_t(clump.mesh.vertices.size());
+    const uint32_t transferBase = uint32_t(p.transfer.size() / 4);
+    if (clump.transfer.empty())
+        appendUnshadowedTransfer(clump.mesh, p.transfer);
+    else
+        p.transfer.insert(p.transfer.end(), clump.transfer.begin(), clump.transfer.end());
+    const uint32_t variants = 2 * clump.yawBins;
+    g.light = gpu::uvec4(uint32_t(p.lightVec4s), clump.yawBins, transferBase, vertexCount);
+    p.lightVec4s += uint64_t(vertexCount) * variants * gpu::kLightVec4sPerVertex;
+    p.lightVertices.push_back(vertexCount * variants);
+    const float range = clump.yawHigh - clump.yawLow;
+    g.yawBins = range > 0.0f ? glm::vec4(clump.yawLow, float(clump.yawBins) / range, range / float(clump.yawBins), 0.0f)
+                             : glm::vec4(clump.yawLow, 0.0f, 0.0f, 0.0f);
+    g.albedo = clump.albedo;
+    if (clump.groundResolution >= 2) {
+        const uint32_t points = clump.groundResolution * clump.groundResolution;
+        g.ground = gpu::uvec4(uint32_t(p.transfer.size() / 4), uint32_t(p.lightVec4s), clump.groundResolution, 0u);
+        for (float t : clump.groundTransfer)
+            p.transfer.insert(p.transfer.end(), {t, 0.0f, 0.0f, 0.0f});
+        p.lightVec4s += uint64_t(points) * variants;
+        p.lightVertices.back() += points * variants;
+        g.yawBins.w = clump.groundSize;
+    }
+}
+
+// Each instance's first motion state, and each bucket's range of the visible list: it holds every
+// instance of its clump (an instance lands in at most one range per LOD of its clump, two while
+// crossfading, never twice in one).
+void packInstances(std::span<const FieldClump> clumps, std::span<const gpu::GpuInstance> instances,
+                   uint32_t lodCount, FieldPacking& p) {
+    const uint32_t clumpCount = uint32_t(clumps.size());
+    std::vector<uint32_t> perClump(clumpCount, 0);
+    p.states.assign(instances.size(), gpu::GpuMotionState{});
+    for (size_t i = 0; i < instances.size(); ++i) {
+        const gpu::GpuInstance& inst = instances[i];
+        if (inst.mesh >= clumpCount)
+            throw Error("a field instance names clump " + std::to_string(inst.mesh) + " of " +
+                        std::to_string(clumpCount));
+        perClump[inst.mesh]++;
+        const FieldClump& clump = clumps[inst.mesh];
+        // Each instance starts at its own frame so that copies never move in lock step.
+        if (clump.motion.frames > 0)
+            p.states[i] = initialMotionState(clump.graph, uint32_t(i));
+    }
+    uint32_t first = 0;
+    for (uint32_t m = 0; m < uint32_t(p.draws.size()); ++m) {
+        p.draws[m].firstInstance = first;
+        p.drawCapacity.push_back(perClump[m / lodCount]);
+        first += perClump[m / lodCount];
+    }
+    p.visibleCount = first;
+}
+
+} // namespace
+
+void checkFieldClump(const FieldClump& clump, size_t index, uint32_t lodCount) {
+    const std::string what = "field clump " + std::to_string(index);
+    const size_t vertexCount = clump.mesh.vertices.size();
+    if (vertexCount == 0)
+        throw Error(what + " has no vertices");
+    if (clump.lods.size() != lodCount)
+        throw Error(what + " has " + std::to_string(clump.lods.size()) + " levels of detail, not " +
+                    std::to_string(lodCount));
+    for (size_t l = 0; l < clump.lods.size(); ++l) {
+        const FieldLod& lod = clump.lods[l];
+        if (lod.indices.empty() || lod.indices.size() % 3 != 0)
+            throw Error(what + " LOD " + std::to_string(l) + " has no triangles or a partial one");
+        for (uint32_t v : lod.vertices)
+            if (v >= vertexCount)
+                throw Error(what + " LOD " + std::to_string(l) + " names vertex " + std::to_string(v) + " of " +
+                            std::to_string(vertexCount));
+        for (uint32_t i : lod.indices)
+            if (i >= lod.vertices.size())
+                throw Error(what + " LOD " + std::to_string(l) + " has an index past its vertices");
+    }
+    const bool moving = clump.motion.frames > 0;
+    if (moving != (clump.graph.nodeCount > 0))
+        throw Error(what + " has motion without a motion graph or a graph without motion");
+    if (moving) {
+        if (clump.motion.vertexBlock.size() != vertexCount || clump.motion.vertexRowOffset.size() != vertexCount)
+            throw Error(what + ": its motion basis covers " + std::to_string(clump.motion.vertexBlock.size()) +
+                        " vertices, its mesh has " + std::to_string(vertexCount));
+        if (clump.graph.nodeCount != clump.motion.frames || clump.graph.levelCount == 0)
+            throw Error(what + ": its motion graph has " + std::to_string(clump.graph.nodeCount) + " nodes for " +
+                        std::to_string(clump.motion.frames) + " motion frames");
+        for (const MotionBlock& block : clump.motion.blocks)
+            if (block.ranks[0] > 0xffffu)
+                throw Error(what + ": a motion block has more than 65535 modes");
+    }
+    if (!clump.transfer.empty() && clump.transfer.size() != vertexCount * kTransferValues * 4)
+        throw Error(what + ": its light transfer holds " + std::to_string(clump.transfer.size()) +
+                    " values, not 216 per vertex (SH order 3, two sides, RGB, with gradients)");
+    if (clump.groundResolution == 1 ||
+        clump.groundTransfer.size() != size_t(clump.groundResolution) * clump.groundResolution * 27 ||
+        (clump.groundResolution > 0 && !(clump.groundSize > 0.0f)))
+        throw Error(what + ": its ground grid of " + std::to_string(clump.groundResolution) +
+                    " points per side holds " + std::to_string(clump.groundTransfer.size()) +
+                    " values (27 per point) over " + std::to_string(clump.groundSize) + " m");
+    if (clump.yawBins == 0 || !(clump.yawHigh >= clump.yawLow))
+        throw Error(what + ": its yaw range or yaw bins are empty");
+}
+
+FieldPacking packField(std::span<const FieldClump> clumps, std::span<const gpu::GpuInstance> instances,
+                       uint32_t lodCount) {
+    FieldPacking p;
+    p.draws.resize(clumps.size() * lodCount);
+    for (size_t ci = 0; ci < clumps.size(); ++ci) {
+        const FieldClump& clump = clumps[ci];
+        gpu::GpuClump g{};
+        uint32_t basisBase = 0;
+        packMotion(clump, p, g, basisBase);
+        packGraph(clump, p, g);
+        packLods(clump, ci, lodCount, basisBase, p);
+        packLight(clump, p, g);
+        p.clumps.push_back(g);
+    }
+    if (p.lightVec4s > (uint64_t(1) << 31) / 16 || p.motionData.size() > (size_t(1) << 31))
+        throw Error("the field's clumps need more than 2 GiB of light or motion data");
+    packInstances(clumps, instances, lodCount, p);
+    return p;
+}
+
+GroundLightMapLayout groundLightMapLayout(std::span<const FieldClump> clumps,
+                                          std::span<const gpu::GpuInstance> instances) {
+    glm::vec2 low(1e30f), high(-1e30f);
+    for (const gpu::GpuInstance& inst : instances) {
+        const float reach = 0.75f * clumps[inst.mesh].groundSize * std::abs(inst.positionScale.w); // > half diagonal
+        if (clumps[inst.mesh].groundResolution < 2)
+            continue;
+        low = glm::min(low, glm::vec2(inst.positionScale.x, inst.positionScale.z) - reach);
+        high = glm::max(high, glm::vec2(inst.positionScale.x, inst.positionScale.z) + reach);
+    }
+    GroundLightMapLayout map;
+    if (low.x < high.x) {
+        const glm::vec2 extent = high - low;
+        map.size = {std::clamp(uint32_t(extent.x / 0.08f), 16u, 2048u),
+                    std::clamp(uint32_t(extent.y / 0.08f), 16u, 2048u)};
+        map.rect = glm::vec4(low, 1.0f / extent.x, 1.0f / extent.y);
+    } else {
+        map.rect = glm::vec4(0.0f, 0.0f, 0.0f, 0.0f); // nothing casts: every point reads the open-ground texel
+    }
+    return map;
+}
+
+size_t skyFrameFloats(const sky::SkyDay& day) {
+    return gpu::kSkyFrameHeaderFloats + size_t(day.imageWidth) * day.imageHeight * 3;
+}
+
+std::vector<float> packSkyDay(const sky::SkyDay& day) {
+    const size_t skyStride = skyFrameFloats(day);
+    std::vector<float> skyData(skyStride * day.frames.size(), 0.0f);
+    for (size_t f = 0; f < day.frames.size(); ++f) {
+        const sky::SkyFrame& frame = day.frames[f];
+        float* out = &skyData[f * skyStride];
+        if (frame.sh.size() != 27 || frame.image.size() != skyStride - gpu::kSkyFrameHeaderFloats)
+            throw Error("sky frame " + std::to_string(f) + " has the wrong number of SH values or pixels");
+        std::copy(frame.sh.begin(), frame.sh.end(), out);
+        for (int k = 0; k < 3; ++k) {
+            out[28 + k] = frame.sunDirection[k];
+            out[32 + k] = frame.sunRadiance[k];
+        }
+        std::copy(frame.image.begin(), frame.image.end(), out + gpu::kSkyFrameHeaderFloats);
+    }
+    return skyData;
+}
+
+} // namespace meadow
