@@ -73,7 +73,7 @@ int runInspect(const Args& argv) {
     j["inputHash"] = lib.inputHash;
     j["bytes"] = lib.fileBytes;
     j["sections"] = lib.sections;
-    j["scene"] = {{"name", lib.scene.value("name", "")}, {"seed", lib.scene.value("seed", 0)}};
+    j["scene"] = {{"name", lib.scene.name}, {"seed", lib.scene.seed}};
     j["clumps"] = nlohmann::json::array();
     for (const LibraryClump& c : lib.clumps) {
         nlohmann::json clump;

@@ -44,9 +44,7 @@ FieldScenery fieldScenery(const Library& library) {
 std::vector<FieldClump> fieldClumps(const Library& library) {
     std::vector<FieldClump> clumps;
     // Clumps turn by at most the field's yaw jitter; light is projected for 4 yaws in that range.
-    float jitter = 0.3f;
-    if (library.scene.contains("field") && library.scene["field"].contains("yawJitter"))
-        jitter = library.scene["field"]["yawJitter"].get<float>();
+    const float jitter = library.scene.yawJitter;
     for (const LibraryClump& source : library.clumps) {
         FieldClump clump;
         clump.mesh = source.mesh;

@@ -128,8 +128,8 @@ void packLight(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
 // Each instance's first motion state, and each bucket's range of the visible list: it holds every
 // instance of its clump (an instance lands in at most one range per LOD of its clump, two while
 // crossfading, never twice in one).
-void packInstances(std::span<const FieldClump> clumps, std::span<const gpu::GpuInstance> instances,
-                   uint32_t lodCount, FieldPacking& p) {
+void packInstances(std::span<const FieldClump> clumps, std::span<const gpu::GpuInstance> instances, uint32_t lodCount,
+                   FieldPacking& p) {
     const uint32_t clumpCount = uint32_t(clumps.size());
     std::vector<uint32_t> perClump(clumpCount, 0);
     p.states.assign(instances.size(), gpu::GpuMotionState{});

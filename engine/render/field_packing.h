@@ -18,13 +18,13 @@ namespace meadow {
 
 struct FieldPacking {
     std::vector<gpu::GpuClump> clumps;
-    std::vector<gpu::GpuLodVertex> lodVertices; // every clump's LODs, LOD by LOD
-    std::vector<uint32_t> indices;              // each LOD's triangles into its own vertices
-    std::vector<float> motionData;              // per moving clump: its basis rows, then its coordinates
-    std::vector<uint32_t> motionGraph;          // per clump: edge starts, targets, weights, natural successors
-    std::vector<float> transfer;                // vec4s: vertex transfer with gradients, ground grid transfer
-    uint64_t lightVec4s = 0;                    // the vertex light buffer's size in uvec4s
-    std::vector<uint32_t> lightVertices;        // per clump: vertices x variants (light.comp threads)
+    std::vector<gpu::GpuLodVertex> lodVertices;    // every clump's LODs, LOD by LOD
+    std::vector<uint32_t> indices;                 // each LOD's triangles into its own vertices
+    std::vector<float> motionData;                 // per moving clump: its basis rows, then its coordinates
+    std::vector<uint32_t> motionGraph;             // per clump: edge starts, targets, weights, natural successors
+    std::vector<float> transfer;                   // vec4s: vertex transfer with gradients, ground grid transfer
+    uint64_t lightVec4s = 0;                       // the vertex light buffer's size in uvec4s
+    std::vector<uint32_t> lightVertices;           // per clump: vertices x variants (light.comp threads)
     std::vector<gpu::GpuDrawIndexedCommand> draws; // per draw bucket (clump-major), instance counts 0
     std::vector<uint32_t> meshTriangles;           // per draw bucket
     std::vector<uint32_t> drawCapacity;            // per draw bucket: the instances its visible range holds

@@ -25,14 +25,26 @@
 #include "library/sky_day.h"
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 namespace meadow {
 
+// The resolved scene (preset merged, effective seed) as the SCNE section holds it, JSON text, and
+// what the run time reads of it.
+struct LibraryScene {
+    std::string json;
+    std::string name;
+    uint64_t seed = 0;
+    float yawJitter = 0.3f; // field.yawJitter, or the scene's default (scene/scene.h)
+};
+
+// Reads name, seed and field.yawJitter from the resolved scene's JSON text; throws meadow::Error
+// naming `where` when the text is not JSON or not a resolved scene.
+LibraryScene parseLibraryScene(std::string json, const std::string& where);
+
 struct Library {
-    nlohmann::json scene; // resolved scene (preset merged, effective seed)
+    LibraryScene scene;
     std::vector<LibraryClump> clumps;
     RgbaImage atlas;
     LibraryField field; // terrain, instances of clumps and rocks, rocks, placement figures

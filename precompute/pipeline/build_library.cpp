@@ -59,7 +59,7 @@ Library buildLibrary(const Scene& scene, bool quiet) {
     say("precompute %s (preset %s, seed %llu)", scene.name.c_str(), scene.preset.c_str(),
         static_cast<unsigned long long>(scene.seed));
     Library library;
-    library.scene = scene.resolved;
+    library.scene = parseLibraryScene(scene.resolved.dump(2), "scene " + scene.name);
 
     library.skyFromMaps = !scene.sky.maps.empty();
     library.sky = library.skyFromMaps ? sky::buildEnvironmentDay(scene.sky.maps, scene.sky.params)
