@@ -528,7 +528,7 @@ void advanceScene(Walkthrough& w, double dt) {
     w.state.height = w.targets.extent.height;
     w.state.seconds = w.sceneSeconds;
     applyControls(w.controls, w.state);
-    updateFrame(w.renderer, w.state);
+    updateFrame(w.ctx, w.renderer, w.state);
 }
 
 void recordAndPresent(Walkthrough& w, uint32_t imageIndex) {

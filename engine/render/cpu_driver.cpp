@@ -60,7 +60,7 @@ void enableCpuDriver(Context& ctx, FieldRenderer& r, std::span<const FieldClump>
     r.cpuDriver = std::move(d);
 }
 
-uint64_t cpuDriverUpdate(CpuDriver& d, const gpu::GpuFrame& frame) {
+void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
     // Motion: every instance steps at the wind of its place (independent per instance).
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, d.instances.size(), 4096), [&](const tbb::blocked_range<size_t>& range) {
@@ -80,27 +80,30 @@ uint64_t cpuDriverUpdate(CpuDriver& d, const gpu::GpuFrame& frame) {
         });
 
     // Cull and LOD, straight into the staging draw commands and visible list.
-    char* base = static_cast<char*>(d.staging.mapped());
-    auto* draws = reinterpret_cast<gpu::GpuDrawIndexedCommand*>(base + d.drawsAt);
-    auto* visible = reinterpret_cast<uint32_t*>(base + d.visibleAt);
-    auto* records = reinterpret_cast<gpu::GpuDrawInstance*>(base + d.recordsAt);
+    // Every write into the staging buffer goes through hostWriteAt, which counts it.
+    const size_t drawBytes = d.drawTemplate.size() * sizeof(gpu::GpuDrawIndexedCommand);
+    auto* draws = static_cast<gpu::GpuDrawIndexedCommand*>(hostWriteAt(ctx, d.staging, d.drawsAt, drawBytes));
     d.recordCopies.clear();
     d.recordBytes = 0;
     auto record = [&](uint32_t i, float x, bool lodChoice) {
         const gpu::GpuInstance& inst = d.instances[i];
-        records[i] = gpu::makeDrawInstance(inst, d.clumps[inst.mesh], d.states[i], x, lodChoice);
         const VkDeviceSize at = VkDeviceSize(i) * sizeof(gpu::GpuDrawInstance);
+        *static_cast<gpu::GpuDrawInstance*>(
+            hostWriteAt(ctx, d.staging, d.recordsAt + at, sizeof(gpu::GpuDrawInstance))) =
+            gpu::makeDrawInstance(inst, d.clumps[inst.mesh], d.states[i], x, lodChoice);
         if (!d.recordCopies.empty() && d.recordCopies.back().dstOffset + d.recordCopies.back().size == at)
             d.recordCopies.back().size += sizeof(gpu::GpuDrawInstance);
         else
             d.recordCopies.push_back({d.recordsAt + at, at, sizeof(gpu::GpuDrawInstance)});
         d.recordBytes += sizeof(gpu::GpuDrawInstance);
     };
-    std::memcpy(draws, d.drawTemplate.data(), d.drawTemplate.size() * sizeof(gpu::GpuDrawIndexedCommand));
+    std::memcpy(draws, d.drawTemplate.data(), drawBytes);
     gpu::GpuCullStats stats{};
     d.visibleEntries = 0;
     auto append = [&](uint32_t bucket, uint32_t entry) {
-        visible[draws[bucket].firstInstance + draws[bucket].instanceCount++] = entry;
+        const VkDeviceSize slot = VkDeviceSize(draws[bucket].firstInstance + draws[bucket].instanceCount++);
+        *static_cast<uint32_t*>(hostWriteAt(ctx, d.staging, d.visibleAt + slot * sizeof(uint32_t), sizeof(uint32_t))) =
+            entry;
         ++d.visibleEntries;
     };
     for (uint32_t i = 0; i < d.instances.size(); ++i) {
@@ -128,10 +131,7 @@ uint64_t cpuDriverUpdate(CpuDriver& d, const gpu::GpuFrame& frame) {
             d.visibleCopies.push_back({d.visibleAt + draws[m].firstInstance * sizeof(uint32_t),
                                        draws[m].firstInstance * sizeof(uint32_t),
                                        draws[m].instanceCount * sizeof(uint32_t)});
-    std::memcpy(base + d.statsAt, &stats, sizeof(stats));
-    // What crosses to the GPU: the visible instances' records, the draws, the statistics and the
-    // used part of the visible lists.
-    return d.recordBytes + (d.visibleAt - d.drawsAt) + uint64_t(d.visibleEntries) * sizeof(uint32_t);
+    writeMapped(ctx, d.staging, &stats, sizeof(stats), d.statsAt);
 }
 
 void cpuDriverRecordUploads(CpuDriver& d, const FieldRenderer& r, VkCommandBuffer cmd) {

@@ -20,9 +20,9 @@ struct CpuDriver;
 void enableCpuDriver(Context& context, FieldRenderer& renderer, std::span<const FieldClump> clumps,
                      std::span<const gpu::GpuInstance> instances);
 
-// Called by updateFrame: steps, culls and fills the staging buffers for `frame`; returns the
-// bytes written for the GPU.
-uint64_t cpuDriverUpdate(CpuDriver& driver, const gpu::GpuFrame& frame);
+// Called by updateFrame: steps, culls and fills the staging buffers for `frame` (every byte
+// counted in Context::hostBytesWritten as it is written).
+void cpuDriverUpdate(Context& context, CpuDriver& driver, const gpu::GpuFrame& frame);
 
 // Called by recordFieldFrame in place of the animate and cull passes: copies the staging buffers
 // (the visible instances' draw records, draw commands, statistics, visible lists) into the

@@ -47,12 +47,14 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
         if (options.path)
             state.camera = cameraOnPath(options.camera, *options.path,
                                         double(i < kFieldBenchWarmUp ? 0 : i - kFieldBenchWarmUp) / 30.0);
+        const uint64_t writtenBefore = ctx.hostBytesWritten;
         FrameTimings t = renderOffscreenFrame(ctx, renderer, offscreen, state);
         if (i < kFieldBenchWarmUp)
             continue;
         lightRuns += renderer.lightThisFrame ? 1 : 0;
-        uploadMin = std::min(uploadMin, renderer.uploadBytesLastFrame);
-        uploadMax = std::max(uploadMax, renderer.uploadBytesLastFrame);
+        const uint64_t uploaded = ctx.hostBytesWritten - writtenBefore;
+        uploadMin = std::min(uploadMin, uploaded);
+        uploadMax = std::max(uploadMax, uploaded);
         frameMs.push_back(t.wallMs);
         cpuMs.push_back(t.cpuRecordSubmitMs);
         double total = 0.0;
@@ -75,8 +77,9 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     j["lightPass"] = {{"framesRun", lightRuns}, {"msWhenRun", percentile(lightMs, 0.5)}};
     // Recording and submitting, plus (CPU-driven) stepping, culling and filling the uploads.
     j["cpuMsPerFrame"] = percentile(cpuMs, 0.5);
-    // The uniform block and the push constants recorded into each frame (FieldRenderer), plus
-    // (CPU-driven) the motion states, LOD coordinates, draw commands and visible lists.
+    // Every byte the CPU wrote for the device during the frame (Context::hostBytesWritten): the
+    // uniform block and the push constants, plus (CPU-driven) the visible instances' draw
+    // records, the draw commands, the statistics and the visible lists.
     j["uploadBytesPerFrame"] = uploadMax;
     j["uploadBytesPerFrameMin"] = uploadMin;
     j["trianglesPerFrame"] = stats.trianglesDrawn;

@@ -188,7 +188,8 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     deviceBuffer(r.stats, nullptr, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     r.statsReadback =
         createBuffer(ctx, sizeof(gpu::GpuCullStats) + drawBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
-    std::memset(r.statsReadback.mapped(), 0, r.statsReadback.size);
+    const std::vector<uint8_t> zeros(r.statsReadback.size, 0);
+    writeMapped(ctx, r.statsReadback, zeros.data(), zeros.size());
     r.atlas = createTexture(ctx, {atlas.width, atlas.height}, VK_FORMAT_R8G8B8A8_SRGB, atlas.rgba.data());
     r.sampler = createLinearSampler(ctx);
 
@@ -308,7 +309,7 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
     return f;
 }
 
-void updateFrame(FieldRenderer& r, const FrameState& state) {
+void updateFrame(Context& ctx, FieldRenderer& r, const FrameState& state) {
     const gpu::GpuFrame f = frameUniforms(r, state);
     r.lastTick = int64_t(f.counts.z);
     // The light pass (and the ground light map) follow the sky in steps of 1/32 of the blend
@@ -322,17 +323,11 @@ void updateFrame(FieldRenderer& r, const FrameState& state) {
         r.lightValid = true;
     }
     r.cullThisFrame = !(state.freezeCulling && r.culledOnce);
-    uint64_t cpuDriven = 0;
     if (r.cpuDriver && r.cullThisFrame)
-        cpuDriven = cpuDriverUpdate(*r.cpuDriver, f);
+        cpuDriverUpdate(ctx, *r.cpuDriver, f);
     r.culledOnce = true;
-    std::memcpy(r.frameUniforms.mapped(), &f, sizeof(f));
+    writeMapped(ctx, r.frameUniforms, &f, sizeof(f));
     r.lastFrame = f;
-    // What crosses to the GPU for this frame: the uniform block and the push constants recorded
-    // into its commands (the instance pipeline's mirror plane, the light pass's clump index).
-    r.uploadBytesLastFrame = sizeof(f) + sizeof(r.mirrorNormal) +
-                             (r.lightThisFrame ? r.clumpCount * sizeof(uint32_t) + sizeof(r.mirrorNormal) : 0u) +
-                             cpuDriven;
 }
 
 void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
@@ -344,7 +339,7 @@ void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
         const int64_t next = std::min<int64_t>(r.lastTick + gpu::kMaxMotionStepsPerFrame, target);
         step.seconds = (double(next) + 0.5) / kMotionRate;
         const gpu::GpuFrame f = frameUniforms(r, step);
-        std::memcpy(r.frameUniforms.mapped(), &f, sizeof(f));
+        writeMapped(ctx, r.frameUniforms, &f, sizeof(f));
         submitAndWait(ctx, [&](VkCommandBuffer cmd) {
             barrier(cmd, access::kVertexShaderRead | access::kComputeReadWrite, access::kComputeReadWrite);
             bindPipeline(ctx, cmd, r.animate, {r.frameUniforms, r.instances, r.clumps, r.motionGraph, r.motionStates});
@@ -408,7 +403,7 @@ void recordLightPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
     if (r.lightThisFrame) {
         bindPipeline(ctx, cmd, r.light, {r.frameUniforms, r.clumps, r.transfer, r.skyData, r.vertexLight});
         for (uint32_t c = 0; c < r.clumpCount; ++c) {
-            vkCmdPushConstants(cmd, r.light.layout, r.light.pushConstantStages, 0, sizeof(uint32_t), &c);
+            pushConstants(ctx, cmd, r.light, &c, sizeof(uint32_t));
             dispatchCovering(cmd, r.light, r.lightVertices[c]);
         }
     }
@@ -442,8 +437,7 @@ void recordGroundLightMap(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
     vkCmdSetScissor(cmd, 0, 1, &mapScissor);
     if (r.groundRect.z > 0.0f) {
         bindPipeline(ctx, cmd, r.groundMap, {r.frameUniforms, r.instances, r.clumps, r.vertexLight});
-        vkCmdPushConstants(cmd, r.groundMap.layout, r.groundMap.pushConstantStages, 0, sizeof(glm::vec4),
-                           &r.mirrorNormal);
+        pushConstants(ctx, cmd, r.groundMap, &r.mirrorNormal, sizeof(glm::vec4));
         vkCmdDraw(cmd, 6, r.instanceCount, 0, 0);
     }
     vkCmdEndRendering(cmd);
@@ -490,7 +484,7 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
     bindPipeline(ctx, cmd, r.instance,
                  {r.frameUniforms, r.visibleList, r.drawInstances, r.clumps, r.lodVertices, r.motionData, r.vertexLight,
                   Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
-    vkCmdPushConstants(cmd, r.instance.layout, r.instance.pushConstantStages, 0, sizeof(glm::vec4), &r.mirrorNormal);
+    pushConstants(ctx, cmd, r.instance, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
     for (uint32_t lod = 0; lod < r.lodCount; ++lod)
         vkCmdDrawIndexedIndirect(cmd, r.drawCommands.buffer, lod * sizeof(gpu::GpuDrawIndexedCommand), r.clumpCount,

@@ -162,7 +162,6 @@ struct FieldRenderer {
     bool lightThisFrame = false; // the sky moved by 1/32 of a sky frame since the last light pass
     bool cullThisFrame = true;
     bool culledOnce = false;
-    uint64_t uploadBytesLastFrame = 0; // bytes the CPU wrote for the last frame (uniforms, push constants)
     gpu::GpuFrame lastFrame{};
     // Set by enableCpuDriver (render/cpu_driver.h): the CPU steps, culls and uploads instead.
     std::shared_ptr<CpuDriver> cpuDriver;
@@ -185,7 +184,7 @@ void destroyFieldRenderer(Context& context, FieldRenderer& renderer);
 // Writes the frame's uniform block from the camera, time, wind and sky (and the renderer's own
 // counts and LOD parameters), and decides whether the light pass runs. Call only when the
 // previous frame's commands completed.
-void updateFrame(FieldRenderer& renderer, const FrameState& state);
+void updateFrame(Context& context, FieldRenderer& renderer, const FrameState& state);
 
 // Plays the motion forward to state.seconds without drawing (animate passes only, waiting for
 // each): a first frame then shows the clumps already moving in the wind of `state`.

@@ -33,7 +33,7 @@ void destroyOffscreen(Context& ctx, Offscreen& o) {
 FrameTimings renderOffscreenFrame(Context& ctx, FieldRenderer& renderer, Offscreen& o, const FrameState& state) {
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
-    updateFrame(renderer, state);
+    updateFrame(ctx, renderer, state);
     VK_CHECK(vkResetCommandBuffer(o.cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;

@@ -53,6 +53,10 @@ struct Context {
     bool validationEnabled = false;
     std::unique_ptr<ValidationCounter> validation;
     std::unique_ptr<MemoryAllocator> memory;
+    // Every byte the CPU has written for the device: mapped buffers (vk/memory.h writeMapped,
+    // hostWriteAt), uploads through staging, push constants (vk/pipeline.h pushConstants). The
+    // per-frame upload figures are differences of it.
+    uint64_t hostBytesWritten = 0;
 
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
 

@@ -175,12 +175,25 @@ void destroyImage(Context& ctx, Image& image) {
     image = Image{};
 }
 
+void* hostWriteAt(Context& ctx, const Buffer& buffer, VkDeviceSize offset, VkDeviceSize size) {
+    if (!buffer.allocation.mapped || offset + size > buffer.size)
+        throw Error("a host write of " + std::to_string(size) + " bytes at " + std::to_string(offset) +
+                    " into a buffer of " + std::to_string(buffer.size) +
+                    (buffer.allocation.mapped ? "" : " (not mapped)"));
+    ctx.hostBytesWritten += size;
+    return static_cast<char*>(buffer.allocation.mapped) + offset;
+}
+
+void writeMapped(Context& ctx, const Buffer& buffer, const void* data, VkDeviceSize size, VkDeviceSize offset) {
+    std::memcpy(hostWriteAt(ctx, buffer, offset, size), data, size);
+}
+
 void uploadToBuffer(Context& ctx, const Buffer& destination, const void* data, VkDeviceSize size,
                     VkDeviceSize destinationOffset) {
     if (size == 0)
         return;
     Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
-    std::memcpy(staging.mapped(), data, size);
+    writeMapped(ctx, staging, data, size);
     submitAndWait(ctx, [&](VkCommandBuffer cmd) {
         // Earlier submissions may still read or write the destination; later ones may use it
         // in any way.
@@ -208,7 +221,7 @@ Image createTexture(Context& ctx, VkExtent2D extent, VkFormat format, const void
         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, mips);
     VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
     Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
-    std::memcpy(staging.mapped(), rgba, bytes);
+    writeMapped(ctx, staging, rgba, bytes);
     const Access sampled{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
     submitAndWait(ctx, [&](VkCommandBuffer cmd) {
         auto mipBarrier = [&](uint32_t mip, Access before, VkImageLayout from, Access after, VkImageLayout to) {

@@ -63,7 +63,8 @@ struct Buffer {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceSize size = 0;
     Allocation allocation;
-    void* mapped() const { return allocation.mapped; }
+    // A mapped buffer's bytes, to read. The CPU writes through writeMapped and hostWriteAt.
+    const void* mapped() const { return allocation.mapped; }
 };
 
 struct Image {
@@ -81,6 +82,12 @@ void destroyBuffer(Context& context, Buffer& buffer);
 Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                     uint32_t mipLevels = 1);
 void destroyImage(Context& context, Image& image);
+
+// Writes `size` bytes into a mapped (Upload or Readback) buffer at `offset`, counted in
+// Context::hostBytesWritten, as every write of the CPU for the device is.
+void writeMapped(Context& context, const Buffer& buffer, const void* data, VkDeviceSize size, VkDeviceSize offset = 0);
+// Where to write `size` bytes of a mapped buffer at `offset` in place; counted as written.
+void* hostWriteAt(Context& context, const Buffer& buffer, VkDeviceSize offset, VkDeviceSize size);
 
 // Copies `size` bytes into a device-local buffer through a temporary staging buffer and waits.
 void uploadToBuffer(Context& context, const Buffer& destination, const void* data, VkDeviceSize size,

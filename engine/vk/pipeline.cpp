@@ -199,6 +199,14 @@ Pipeline createGraphicsPipeline(Context& ctx, const GraphicsPipelineDesc& desc) 
     return p;
 }
 
+void pushConstants(Context& ctx, VkCommandBuffer cmd, const Pipeline& p, const void* data, uint32_t size) {
+    if (size != p.pushConstantSize)
+        throw Error("pipeline " + p.name + ": " + std::to_string(size) + " bytes of push constants for a block of " +
+                    std::to_string(p.pushConstantSize));
+    ctx.hostBytesWritten += size;
+    vkCmdPushConstants(cmd, p.layout, p.pushConstantStages, 0, size, data);
+}
+
 void destroyPipeline(Context& ctx, Pipeline& p) {
     if (p.pipeline)
         vkDestroyPipeline(ctx.device, p.pipeline, nullptr);

@@ -45,6 +45,10 @@ struct GraphicsPipelineDesc {
 };
 
 Pipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc);
+
+// Records the pipeline's push constants (all its block, to the stages that declare it); the bytes
+// count in Context::hostBytesWritten.
+void pushConstants(Context& context, VkCommandBuffer cmd, const Pipeline& pipeline, const void* data, uint32_t size);
 void destroyPipeline(Context& context, Pipeline& pipeline);
 
 // One resource for one binding, in binding order.

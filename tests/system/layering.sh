@@ -6,7 +6,10 @@
 #   - a file of precompute/library includes anything of meadow but core/, library/ and
 #     shaders/shared/,
 #   - meadow_engine or meadow_library links, directly or through another target, a stage
-#     (meadow_scene, meadow_plants, ... meadow_precompute).
+#     (meadow_scene, meadow_plants, ... meadow_precompute),
+#   - a file of engine/ outside vk/ records push constants or buffer updates, maps memory or
+#     casts a mapped buffer writable: the CPU's writes for the device go through vk/memory.h and
+#     vk/pipeline.h, which count them (Context::hostBytesWritten, the per-frame upload figures).
 #   tests/system/layering.sh SOURCE_DIR LINK_GRAPH_FILE
 # LINK_GRAPH_FILE (written by tests/CMakeLists.txt at configure time) holds one line per meadow
 # target: `target: dependency;dependency;...`.
@@ -45,6 +48,11 @@ for part in vk render ui io; do
 done
 check_includes "$src/precompute/library" core library
 
+while IFS=: read -r file line _; do
+    fail "${file#"$src"/}:$line writes for the device around engine/vk's counted writes"
+done < <(grep -rnE 'vkCmdPushConstants|vkCmdUpdateBuffer|vkMapMemory|const_cast<[^>]*>\([^)]*mapped\(\)' \
+    --include='*.h' --include='*.cpp' "$src/engine" | grep -v "^$src/engine/vk/" || true)
+
 # The link graph's closure from meadow_engine and from meadow_library.
 declare -A deps
 while IFS= read -r line; do
@@ -79,4 +87,5 @@ if ((failures)); then
     echo "layering: $failures violation(s)" >&2
     exit 1
 fi
-echo "layering: engine/{vk,render,ui,io} and precompute/library depend on the library and the core only"
+echo "layering: engine/{vk,render,ui,io} and precompute/library depend on the library and the core only;" \
+    "the CPU writes for the device through engine/vk only"
