@@ -130,6 +130,14 @@ int runInspect(const Args& argv) {
                              {"stronglyConnected", g.stronglyConnected},
                              {"levelsStronglyConnected", levelsConnected == g.levelCount}}},
                            {"levels", levels}};
+        // The ≤ 1 s target: seconds from a step in the wind level to playing the new level's
+        // frames, over 1000 walks with the run time's own step (library/motion_graph.h).
+        const WindResponse wind = measureWindResponse(g);
+        clump["motion"]["windResponse"] = {
+            {"medianSeconds", {{"up", wind.upMedianSeconds}, {"down", wind.downMedianSeconds}}},
+            {"p95Seconds", {{"up", wind.upP95Seconds}, {"down", wind.downP95Seconds}}},
+            {"walks", wind.instances},
+            {"unreached", wind.unreached}};
         const LibraryLight& light = c.light;
         clump["light"] = {{"shOrder", light.order},
                           {"bakedFrames", light.bakedFrames.size()},

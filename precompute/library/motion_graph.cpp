@@ -2,7 +2,9 @@
 
 #include "core/error.h"
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 namespace meadow {
 
@@ -16,6 +18,47 @@ gpu::MotionTables makeMotionTables(const MotionGraph& graph) {
     tables.levelCount = graph.levelCount;
     tables.blendFrames = graph.blendFrames;
     return tables;
+}
+
+WindResponse measureWindResponse(const MotionGraph& graph) {
+    WindResponse out;
+    if (graph.levelCount < 2)
+        return out;
+    constexpr uint32_t kInstances = 1000, kSettle = 20, kLimit = 3000;
+    constexpr double kStepSeconds = 1.0 / 30.0;
+    const gpu::MotionTables tables = makeMotionTables(graph);
+    const uint32_t strongest = graph.levelCount - 1;
+    std::vector<uint32_t> up, down;
+    auto walkTo = [&](gpu::GpuMotionState& state, uint32_t level, uint32_t seed) {
+        uint32_t steps = 0;
+        while (graph.nodeLevel[state.frame] != level && steps < kLimit) {
+            gpu::motionStep(tables, state, level, seed);
+            ++steps;
+        }
+        out.unreached += steps == kLimit;
+        return steps;
+    };
+    for (uint32_t i = 0; i < kInstances; ++i) {
+        const uint32_t seed = i * 2654435761u;
+        gpu::GpuMotionState state = initialMotionState(graph, seed, 0);
+        for (uint32_t s = 0; s < kSettle; ++s)
+            gpu::motionStep(tables, state, 0, seed);
+        up.push_back(walkTo(state, strongest, seed));
+        for (uint32_t s = 0; s < kSettle; ++s)
+            gpu::motionStep(tables, state, strongest, seed);
+        down.push_back(walkTo(state, 0, seed));
+    }
+    auto quantile = [](std::vector<uint32_t> v, double q) {
+        const size_t k = std::min(v.size() - 1, size_t(q * double(v.size())));
+        std::nth_element(v.begin(), v.begin() + ptrdiff_t(k), v.end());
+        return double(v[k]) * kStepSeconds;
+    };
+    out.instances = kInstances;
+    out.upMedianSeconds = quantile(up, 0.5);
+    out.upP95Seconds = quantile(up, 0.95);
+    out.downMedianSeconds = quantile(down, 0.5);
+    out.downP95Seconds = quantile(down, 0.95);
+    return out;
 }
 
 gpu::GpuMotionState initialMotionState(const MotionGraph& graph, uint32_t instanceSeed, uint32_t level) {

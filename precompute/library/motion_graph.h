@@ -53,4 +53,15 @@ inline constexpr uint32_t kAnyLevel = 0xffffffffu;
 // 2004, section 2) so a field of copies never moves in lock step.
 gpu::GpuMotionState initialMotionState(const MotionGraph& graph, uint32_t instanceSeed, uint32_t level = kAnyLevel);
 
+// How fast the walk follows the wind (the ≤ 1 s target): 1000 instances walk the graph with
+// motionStep, 20 steps in calm air, then toward the strongest level until they play a frame of it
+// (up), 20 steps there, then back until they play a calm frame (down); at most 100 s each. The
+// same numbers for the same graph, in the precompute's log and in `meadow inspect`.
+struct WindResponse {
+    double upMedianSeconds = 0.0, upP95Seconds = 0.0;
+    double downMedianSeconds = 0.0, downP95Seconds = 0.0;
+    uint32_t instances = 0, unreached = 0; // walks that hit the 100 s limit
+};
+WindResponse measureWindResponse(const MotionGraph& graph);
+
 } // namespace meadow

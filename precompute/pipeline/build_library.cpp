@@ -94,6 +94,10 @@ Library buildLibrary(const Scene& scene, bool quiet) {
                        ->maxPenetration *
                    1000.0f),
             m.simulateSeconds, m.pcaSeconds, m.graphSeconds);
+        const WindResponse wind = measureWindResponse(m.graph);
+        say("clump %s wind response (the walk reaching the new level's frames; median, p95): calm to strongest %.2f "
+            "s, %.2f s; back %.2f s, %.2f s",
+            m.clump.name.c_str(), wind.upMedianSeconds, wind.upP95Seconds, wind.downMedianSeconds, wind.downP95Seconds);
         LibraryClump& clump = library.clumps[i];
         clump.name = m.clump.name;
         clump.plants = m.clump.plants;

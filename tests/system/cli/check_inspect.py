@@ -21,5 +21,9 @@ for c in j["clumps"]:
     graph = c["motion"]["graph"]
     assert graph["stronglyConnected"] and graph["levelsStronglyConnected"], (c["name"], graph)
     assert c["motion"]["pcaRelError"][c["lods"][0]["motionModes"]] <= 0.01, c["name"]
+    wind = c["motion"]["windResponse"]
+    assert wind["walks"] == 1000 and wind["unreached"] == 0, (c["name"], wind)
+    assert 0 < wind["medianSeconds"]["up"] <= wind["p95Seconds"]["up"] < 100, (c["name"], wind)
+    assert 0 < wind["medianSeconds"]["down"] <= wind["p95Seconds"]["down"] < 100, (c["name"], wind)
     lods = c["lods"]
     assert len(lods) == 5 and all(lods[i]["triangles"] > lods[i + 1]["triangles"] for i in range(4)), c["name"]
