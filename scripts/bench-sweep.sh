@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sweeps `meadow bench` over field sizes (the default scene's clumps tiled, DESIGN.md 4) and
+# Sweeps `meadow bench` over field sizes (the default scene's clumps tiled, docs/INTERFACE.md) and
 # writes a table (Markdown) and a plot (PNG) of frame time and per-pass GPU time against clump
 # count, plus every run's JSON.
 #   scripts/bench-sweep.sh [--meadow BIN | --bench CMD] [--scene SCENE] [--size WxH] [--frames F]

@@ -87,8 +87,9 @@ exec "\$here/bin/meadow-bench" "\$here/scenes/$(basename "$scene")" --preset $pr
 EOF
 cat >"$stage/sweep.sh" <<'EOF'
 #!/usr/bin/env bash
-# The field-size sweep at 1920x1080 (DESIGN.md 5): meadow-bench from 10 thousand to a million
-# clumps, 30 frames each, JSON per run and a Markdown table (a plot too where matplotlib is).
+# The field-size sweep at 1920x1080 (docs/BENCHMARKS.md, The numbers meadow holds itself to):
+# meadow-bench from 10 thousand to a million clumps, 30 frames each, JSON per run and a Markdown
+# table (a plot too where matplotlib is).
 #   sweep.sh [OUT] [COUNTS...]     OUT default ./bench-sweep
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"

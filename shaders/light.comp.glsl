@@ -1,9 +1,9 @@
 #version 460
-// Light pass (DESIGN.md 3): runs when the sky changes. One thread per clump vertex and light
-// variant: the blended sky's SH, turned into the clump's frame for the variant's yaw and mirror
-// (sh_light.h), dotted with the vertex's transfer and its gradient. What it writes is all the
-// vertex shader needs: irradiance = E + dE/dd . d for its displacement d. Threads past the
-// vertices do the clump's ground grid: per point the ratio of its irradiance to that of open
+// Light pass (docs/ARCHITECTURE.md, The run time): runs when the sky changes. One thread per clump
+// vertex and light variant: the blended sky's SH, turned into the clump's frame for the variant's
+// yaw and mirror (sh_light.h), dotted with the vertex's transfer and its gradient. What it writes
+// is all the vertex shader needs: irradiance = E + dE/dd . d for its displacement d. Threads past
+// the vertices do the clump's ground grid: per point the ratio of its irradiance to that of open
 // ground, which ground_map.frag multiplies into the field's ground light map.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

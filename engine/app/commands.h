@@ -1,4 +1,4 @@
-// The meadow subcommands (DESIGN.md section 4). Each takes its arguments after the command
+// The meadow subcommands (docs/INTERFACE.md). Each takes its arguments after the command
 // name and returns the process exit status; errors are thrown as meadow::Error.
 #pragma once
 

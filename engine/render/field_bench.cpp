@@ -154,7 +154,8 @@ nlohmann::json benchmarkField(Context& ctx, const std::vector<FieldClump>& clump
     j["instanceRecordBytes"] =
         sizeof(gpu::GpuInstance) + sizeof(gpu::GpuMotionState) + sizeof(float); // + LOD coordinate
     if (options.cpuDriven) {
-        // The GPU-driven path in the same run, for the ratio (DESIGN.md 5).
+        // The GPU-driven path in the same run, for the ratio (docs/BENCHMARKS.md, The numbers
+        // meadow holds itself to).
         nlohmann::json gpu = measure(ctx, clumps, field, atlas, scenery, options, false);
         j["comparison"] = {
             {"gpuDriven", gpu},

@@ -1,5 +1,6 @@
 // The benchmark behind `meadow bench` and the bench runner (engine/app/bench_main.cpp): frames of a
-// field offscreen under a moving sky, timed per pass with GPU timestamps, as JSON (DESIGN.md 4).
+// field offscreen under a moving sky, timed per pass with GPU timestamps, as JSON
+// (docs/INTERFACE.md, bench --json).
 #pragma once
 
 #include "render/camera.h"

@@ -1,5 +1,6 @@
-// Draws a field of instances the GPU-driven way (DESIGN.md 3). Per frame the CPU writes one
-// uniform block (camera, wind, sky frames); everything per instance happens in compute passes:
+// Draws a field of instances the GPU-driven way (docs/ARCHITECTURE.md, The run time). Per frame the
+// CPU writes one uniform block (camera, wind, sky frames); everything per instance happens in
+// compute passes:
 //
 //   reset counters -> animate.comp (motion-graph steps at the wind level of each instance)
 //   -> cull.comp (frustum, LOD, compaction into per-(clump, LOD) draws)

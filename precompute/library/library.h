@@ -1,5 +1,5 @@
 // A scene's library: everything the precompute made for it, the one contract between the
-// precompute (which writes it) and the engine (which reads it). DESIGN.md 2.9; docs/ARCHITECTURE.md.
+// precompute (which writes it) and the engine (which reads it). docs/ARCHITECTURE.md, The library.
 //
 // Sections of the container (library_file.h), little-endian, one file each in library/:
 //   "SCNE" the resolved scene as JSON text                                  scene_section.cpp

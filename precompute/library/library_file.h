@@ -1,4 +1,4 @@
-// The library container: one binary file per scene (DESIGN.md section 2.9).
+// The library container: one binary file per scene (docs/ARCHITECTURE.md, The library).
 //
 // Layout, all integers little-endian whatever the machine:
 //   header   magic "MEADOWLB" (8 bytes), u32 formatVersion, u32 sectionCount, u64 inputHash,

@@ -1,6 +1,7 @@
-// A clump's reduced motion as the library stores it and the run time plays it (DESIGN.md 2.3):
-// x_v(t) = x̄_v + sum over k < rank of U_v,k q_k(t), where the modes are those of the rod the
-// vertex follows (motion/block_pca.h). Each level of detail keeps a prefix of every rod's modes.
+// A clump's reduced motion as the library stores it and the run time plays it
+// (docs/ARCHITECTURE.md, Motion): x_v(t) = x̄_v + sum over k < rank of U_v,k q_k(t), where the
+// modes are those of the rod the vertex follows (motion/block_pca.h). Each level of detail keeps a
+// prefix of every rod's modes.
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
-// Real spherical harmonics (DESIGN.md 2.5; Sloan, Kautz and Snyder 2002; Ramamoorthi and Hanrahan
-// 2001). One convention for the whole of meadow, the shaders included:
+// Real spherical harmonics (docs/ARCHITECTURE.md, Light transfer; Sloan, Kautz and Snyder 2002;
+// Ramamoorthi and Hanrahan 2001). One convention for the whole of meadow, the shaders included:
 //
 //   - order n means bands l = 0 .. n-1, n^2 coefficients; index(l, m) = l (l + 1) + m.
 //   - the polar axis is world +y (up), so functions that depend only on elevation (a uniform

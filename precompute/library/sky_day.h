@@ -1,6 +1,6 @@
-// A day of sky as the library keeps it (DESIGN.md 2.6): frames at evenly spaced times, each with
-// its SH for lighting and a small lat-long image for the backdrop; at run time the two frames
-// around the current time are blended, as Cove and James blend their sky photographs.
+// A day of sky as the library keeps it (docs/ARCHITECTURE.md, Sky): frames at evenly spaced times,
+// each with its SH for lighting and a small lat-long image for the backdrop; at run time the two
+// frames around the current time are blended, as Cove and James blend their sky photographs.
 // sky/sky_day.h builds it from the analytic sky, sky/environment_map.h from a user's panoramas.
 //
 // Axes and units: y up, +x east, +z north; radiance in units of 10^4 cd/m^2, linear Rec.709.

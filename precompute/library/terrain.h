@@ -1,8 +1,8 @@
-// The field's ground (DESIGN.md 2.7): a low-frequency heightmap, a few octaves of smooth 2D
-// gradient noise (Perlin's, with the quintic fade so heights have continuous second derivatives)
-// drawn from the seed. Cove & James 2004 displace their clumps by a bilinearly interpolated
-// low-frequency heightmap; here the noise is evaluated directly, with exact derivatives for the
-// normal.
+// The field's ground (docs/ARCHITECTURE.md, Placement): a low-frequency heightmap, a few octaves of
+// smooth 2D gradient noise (Perlin's, with the quintic fade so heights have continuous second
+// derivatives) drawn from the seed. Cove & James 2004 displace their clumps by a bilinearly
+// interpolated low-frequency heightmap; here the noise is evaluated directly, with exact
+// derivatives for the normal.
 //
 // Units: metres, world x and z, height along +y. Pure functions of (x, z): any order, any thread.
 #pragma once

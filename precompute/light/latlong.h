@@ -1,7 +1,7 @@
 // Latitude-longitude (equirectangular) images: the one mapping between pixels and world
 // directions that the sky backdrop, HDR environment maps and their SH projection all use.
 //
-// World axes (DESIGN.md; sh.h): y up, +x east, +z north. The image coordinates are
+// World axes (docs/ARCHITECTURE.md; sh.h): y up, +x east, +z north. The image coordinates are
 //   u = phi / (2 pi), phi the azimuth measured from +z (north) towards +x (east), in [0, 2 pi);
 //   v = theta / pi,   theta the angle from +y (the zenith), in [0, pi].
 // So row 0 is the zenith, the middle row boundary is the horizon, the last row the nadir;

@@ -1,4 +1,5 @@
-// A vertex's light transfer to first order in its own displacement (DESIGN.md 2.5):
+// A vertex's light transfer to first order in its own displacement (docs/ARCHITECTURE.md, Light
+// transfer):
 //
 //     T_v(f) ≈ T̄_v + G_v d_v(f)
 //

@@ -1,5 +1,6 @@
-// Levels of detail for plant clumps (DESIGN.md 2.8; Cove & James 2004, section 2.3: "a quadric-
-// based reduction method, enhanced to appropriately weight the lighting and motion data").
+// Levels of detail for plant clumps (docs/ARCHITECTURE.md, Levels of detail; Cove & James 2004,
+// section 2.3: "a quadric-based reduction method, enhanced to appropriately weight the lighting and
+// motion data").
 //
 // Three algorithms, one .cpp each:
 //   simplify.cpp    half-edge collapses ordered by an attribute quadric (Garland & Heckbert 1997,

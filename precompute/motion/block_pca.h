@@ -2,11 +2,11 @@
 // rod, since every vertex follows exactly one rod (plants/plant.h, SkinBinding).
 //
 // Why not one PCA of the whole clump: the ~50 blades of a clump flutter largely independently in
-// turbulent wind, so a clump-wide basis needs hundreds of modes for 1 % error (DESIGN.md 5), and
-// every vertex would pay for all of them at run time. Per rod, a few modes carry a blade (its
-// motion lives in the span of its ~10 nodes), and a vertex costs only its own rod's modes. The
-// total count of modes for a given error is close to the clump-wide PCA's (Eckart–Young makes
-// that one optimal), but the per-vertex cost falls by an order of magnitude.
+// turbulent wind, so a clump-wide basis needs hundreds of modes for 1 % error (docs/BENCHMARKS.md,
+// first table), and every vertex would pay for all of them at run time. Per rod, a few modes carry
+// a blade (its motion lives in the span of its ~10 nodes), and a vertex costs only its own rod's
+// modes. The total count of modes for a given error is close to the clump-wide PCA's (Eckart–Young
+// makes that one optimal), but the per-vertex cost falls by an order of magnitude.
 //
 // Modes are kept greedily by singular value across all blocks: the first k modes overall are the
 // k largest singular values, which is the least-error block-diagonal basis with k columns, and

@@ -1,8 +1,8 @@
-// The wind-indexed motion graph (DESIGN.md 2.4; Cove & James 2004, section 2.1): frames of the
-// per-level simulations are nodes, natural edges play them in order, transition edges jump
-// between similar frames (video textures, Schödl et al. 2000; motion graphs, Kovar et al. 2002).
-// Offline, the graph is pruned to strongly connected components and every edge gets an integer
-// choice weight per target wind level; the run-time walk is gpu::motionStep in
+// The wind-indexed motion graph (docs/ARCHITECTURE.md, Motion; Cove & James 2004, section 2.1):
+// frames of the per-level simulations are nodes, natural edges play them in order, transition edges
+// jump between similar frames (video textures, Schödl et al. 2000; motion graphs, Kovar et al.
+// 2002). Offline, the graph is pruned to strongly connected components and every edge gets an
+// integer choice weight per target wind level; the run-time walk is gpu::motionStep in
 // shaders/shared/motion_step.h, which reads only the integer tables.
 //
 // Node ids are frame ids (columns of q): pruned frames keep their id but have no edges and no

@@ -1,5 +1,6 @@
-// Motion reduction by principal component analysis (DESIGN.md 2.3): x(t) = mean + U q(t), as
-// James & Fatahalian 2003 and Cove & James 2004 store their precomputed deformations.
+// Motion reduction by principal component analysis (docs/ARCHITECTURE.md, Motion):
+// x(t) = mean + U q(t), as James & Fatahalian 2003 and Cove & James 2004 store their precomputed
+// deformations.
 #pragma once
 
 #include <Eigen/Core>

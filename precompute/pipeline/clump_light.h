@@ -1,9 +1,10 @@
-// The light transfer of one clump over its motion (DESIGN.md 2.5): the clump's transfer and that
-// of the ground around it are baked on a sample of the motion frames (transfer/transfer.h). The
-// clump's vertices keep their mean transfer and its gradient in their own displacement
-// (light/vertex_appearance.h); the ground grid, which does not move, a low-rank basis with
-// coordinates for every motion frame (light/appearance.h; James and Fatahalian 2003). The
-// renderer projects all of it onto the sky's SH once per sky change.
+// The light transfer of one clump over its motion (docs/ARCHITECTURE.md, Light transfer): the
+// clump's transfer and that of the ground around it are baked on a sample of the motion frames
+// (transfer/transfer.h). The clump's vertices keep their mean transfer and its gradient in their
+// own displacement (light/vertex_appearance.h); the ground grid, which does not move, its mean
+// over the baked frames (a low-rank basis, light/appearance.h after James and Fatahalian 2003, is
+// fitted only to report what its modes would gain). The renderer projects all of it onto the sky's
+// SH once per sky change.
 #pragma once
 
 #include "library/mesh.h"

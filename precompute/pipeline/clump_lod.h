@@ -1,7 +1,7 @@
-// A clump's five levels of detail (DESIGN.md 2.8): its mesh simplified by half-edge collapses
-// whose quadrics weigh how each vertex moves and is lit (lod/lod.h), each LOD a subset of the
-// original vertices (so motion rows and transfer are the originals'), with its error measured
-// against the full mesh at rest and over simulated frames.
+// A clump's five levels of detail (docs/ARCHITECTURE.md, Levels of detail): its mesh simplified by
+// half-edge collapses whose quadrics weigh how each vertex moves and is lit (lod/lod.h), each LOD a
+// subset of the original vertices (so motion rows and transfer are the originals'), with its error
+// measured against the full mesh at rest and over simulated frames.
 #pragma once
 
 #include "library/clump.h"

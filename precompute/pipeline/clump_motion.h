@@ -1,5 +1,6 @@
-// The motion library of one clump (DESIGN.md sections 2.2–2.4): the clump simulated in every
-// wind level, its vertex motion reduced by PCA, and the wind-indexed motion graph over the frames.
+// The motion library of one clump (docs/ARCHITECTURE.md, Wind and rods; Motion): the clump
+// simulated in every wind level, its vertex motion reduced by PCA, and the wind-indexed motion
+// graph over the frames.
 #pragma once
 
 #include "library/clump.h"

@@ -1,7 +1,8 @@
-// The field of a scene (DESIGN.md 2.7): each clump's swept volume voxelised from its simulated
-// frames, rocks made and voxelised, the Wang tiles filled by voxel dart throwing (placement/),
-// the scene's stochastic tiling flattened onto the terrain and checked in 3D. What the library
-// keeps of it: flat instance lists for the run time, rock meshes, and the figures inspect shows.
+// The field of a scene (docs/ARCHITECTURE.md, Placement): each clump's swept volume voxelised from
+// its simulated frames, rocks made and voxelised, the Wang tiles filled by voxel dart throwing
+// (placement/), the scene's stochastic tiling flattened onto the terrain and checked in 3D. What
+// the library keeps of it: flat instance lists for the run time, rock meshes, and the figures
+// inspect shows.
 #pragma once
 
 #include "library/field.h"

@@ -1,6 +1,6 @@
-// The field (DESIGN.md 2.7): a stochastic tiling of the filled Wang tiles (tile_fill.h), flattened
-// into plain instance lists on a heightmap terrain (terrain.h), then checked in 3D. The run time
-// knows nothing of tiles: it gets the lists.
+// The field (docs/ARCHITECTURE.md, Placement): a stochastic tiling of the filled Wang tiles
+// (tile_fill.h), flattened into plain instance lists on a heightmap terrain (terrain.h), then
+// checked in 3D. The run time knows nothing of tiles: it gets the lists.
 //
 // Beyond Cove & James 2004 (who note that their hills could make neighbours interpenetrate, since
 // tiles are filled flat): every pair of instances is tested again where it actually stands, at

@@ -1,5 +1,6 @@
 // Placed instances of swept volumes and the exact test of whether two of them overlap
-// (DESIGN.md 2.7). The same transform places clumps and rocks; the run time applies it to meshes.
+// (docs/ARCHITECTURE.md, Placement). The same transform places clumps and rocks; the run time
+// applies it to meshes.
 //
 // World frame: metres, y up. An instance maps a clump-space point p to
 //     world = position + R(yaw) * M * p

@@ -1,6 +1,7 @@
-// Swept volumes (DESIGN.md 2.7; Cove & James 2004, section 2.2): the set of cells of a uniform grid
-// that a clump's surface touches in any of its simulated frames. Placement tests these sets for
-// overlap instead of discs of the swept radius, so clumps whose shapes interleave can stand closer.
+// Swept volumes (docs/ARCHITECTURE.md, Placement; Cove & James 2004, section 2.2): the set of cells
+// of a uniform grid that a clump's surface touches in any of its simulated frames. Placement tests
+// these sets for overlap instead of discs of the swept radius, so clumps whose shapes interleave
+// can stand closer.
 //
 // Grid and units: metres, clump space (y up, the rhizome at the origin, the ground the plane
 // y = 0). Cell (i, j, k) is the closed box [i h, (i+1) h] x [j h, (j+1) h] x [k h, (k+1) h] for

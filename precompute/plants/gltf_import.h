@@ -1,4 +1,4 @@
-// A user's own plant from glTF 2.0 (DESIGN.md section 2.1), read with tinygltf, so it goes
+// A user's own plant from glTF 2.0 (docs/ARCHITECTURE.md, Plants), read with tinygltf, so it goes
 // through the same simulation and lighting pipeline as the procedural irises.
 //
 // What is used: the default scene (or scene 0) and its node hierarchy with every node's

@@ -1,7 +1,7 @@
-// What every plant source produces (DESIGN.md section 2.1): a clump of plants as one two-sided
-// triangle mesh plus the elastic rods that carry it. The procedural irises (iris.h) and the glTF
-// importer (gltf_import.h) both fill these structs; the simulator (precompute/sim) moves the rods
-// and skins the mesh with the bindings below.
+// What every plant source produces (docs/ARCHITECTURE.md, Plants): a clump of plants as one
+// two-sided triangle mesh plus the elastic rods that carry it. The procedural irises (iris.h) and
+// the glTF importer (gltf_import.h) both fill these structs; the simulator (precompute/sim) moves
+// the rods and skins the mesh with the bindings below.
 //
 // Units and frames: metres, kilograms, y up; clump space has the clump's rhizomes around the
 // origin on the plane y = 0. Everything here is plain data owned by the value that holds it.

@@ -1,5 +1,5 @@
-// Procedural rocks (DESIGN.md section 2.1): static, lit by PRT like the plants, placed in the
-// Wang tiles by the same dart throwing as the clumps (precompute/placement) — Cove & James 2004
+// Procedural rocks (docs/ARCHITECTURE.md, Plants): static, lit by PRT like the plants, placed in
+// the Wang tiles by the same dart throwing as the clumps (precompute/placement) — Cove & James 2004
 // scatter "thousands of rock instances" through their field that way.
 //
 // Each rock is a subdivided icosphere displaced along its radius by two octaves of smooth 3D

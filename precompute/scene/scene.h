@@ -18,7 +18,8 @@
 
 namespace meadow {
 
-// The field (DESIGN.md 2.7): Wang tiles filled by voxel dart throwing, tiled over a terrain.
+// The field (docs/ARCHITECTURE.md, Placement): Wang tiles filled by voxel dart throwing, tiled over
+// a terrain.
 struct FieldSpec {
     uint32_t tilesX = 15, tilesY = 15; // the paper's 15 x 15
     float tileSize = 6.0f;             // m, edge of a Wang tile
@@ -66,14 +67,14 @@ struct MotionParams {
     float lod0MaxError = 0.01f;  // relative PCA error allowed at LOD0
 };
 
-// The sky over a day (DESIGN.md 2.6): the analytic daylight sky, or a user's HDR panoramas
-// spread over the day in its place.
+// The sky over a day (docs/ARCHITECTURE.md, Sky): the analytic daylight sky, or a user's HDR
+// panoramas spread over the day in its place.
 struct SkySource {
     sky::SkyParams params;                   // preset defaults, overridden by the scene
     std::vector<std::filesystem::path> maps; // EXR/HDR panoramas, relative to the scene file; empty: analytic
 };
 
-// How the clumps' light transfer is baked and reduced (DESIGN.md 2.5).
+// How the clumps' light transfer is baked and reduced (docs/ARCHITECTURE.md, Light transfer).
 struct LightParams {
     transfer::BakeSettings bake;      // preset defaults (transfer::bakeSettingsForPreset), overridden by the scene
     uint32_t framesPerLevel = 12;     // motion frames baked per wind level, first and last included (ci: 8)
@@ -81,9 +82,10 @@ struct LightParams {
     uint32_t maxAppearanceModes = 16;
 };
 
-// Levels of detail (DESIGN.md 2.8): each LOD's triangle budget as a fraction of the full mesh.
-// The default's last LOD keeps ~30 triangles per iris, one or two per leaf and petal: below that
-// whole leaves and flowers must go, which shows as a change of colour and density at distance.
+// Levels of detail (docs/ARCHITECTURE.md, Levels of detail): each LOD's triangle budget as a
+// fraction of the full mesh. The default's last LOD keeps ~30 triangles per iris, one or two per
+// leaf and petal: below that whole leaves and flowers must go, which shows as a change of colour
+// and density at distance.
 struct LodParams {
     std::array<float, 5> triangleFractions{1.0f, 1.0f / 3.0f, 1.0f / 10.0f, 1.0f / 20.0f, 1.0f / 30.0f};
 };

@@ -1,5 +1,6 @@
 // One clump in one wind level: rods driven by the 3D wind solver, two-way coupled, recorded at
-// the motion frame rate after the clump has settled into the wind (DESIGN.md section 2.2).
+// the motion frame rate after the clump has settled into the wind (docs/ARCHITECTURE.md, Wind and
+// rods).
 #pragma once
 
 #include "plants/plant.h"

@@ -1,4 +1,4 @@
-// Rod dynamics for one plant clump (DESIGN.md section 2.2).
+// Rod dynamics for one plant clump (docs/ARCHITECTURE.md, Wind and rods).
 //
 // Every leaf and stem is an elastic rod: a chain of point masses rooted at the rhizome (node 0
 // is clamped at its rest position and the root segment is clamped in direction, a cantilever).

@@ -1,5 +1,5 @@
-// The analytic sky for one sun position (DESIGN.md 2.6): Preetham, Shirley and Smits, "A
-// Practical Analytic Model for Daylight" (SIGGRAPH 1999), extended below the horizon and into
+// The analytic sky for one sun position (docs/ARCHITECTURE.md, Sky): Preetham, Shirley and Smits,
+// "A Practical Analytic Model for Daylight" (SIGGRAPH 1999), extended below the horizon and into
 // the night. Axes and units as in sky/sun.h (y up, +x east, +z north; 1 = 10^4 cd/m^2).
 //
 // The whole sphere of directions has a defined, finite, non-negative radiance at every sun

@@ -1,10 +1,10 @@
-// A user's HDR environment map, or a sequence of them, in place of the analytic sky (DESIGN.md
-// 2.6). Files are read with OpenImageIO (OpenEXR .exr, Radiance .hdr, or anything else it reads
-// as floating point), must be latitude-longitude panoramas in light/latlong.h's layout (row 0 the
-// zenith, column 0 north, the centre column south), and hold linear Rec.709 radiance in the
-// sky's units (sky/sun.h: 1 = 10^4 cd/m^2); a map in other units is scaled by the renderer's
-// exposure like any other. The whole sphere comes from the file, the lower hemisphere included:
-// a panorama shot above real ground already holds its ground.
+// A user's HDR environment map, or a sequence of them, in place of the analytic sky
+// (docs/ARCHITECTURE.md, Sky). Files are read with OpenImageIO (OpenEXR .exr, Radiance .hdr, or
+// anything else it reads as floating point), must be latitude-longitude panoramas in
+// light/latlong.h's layout (row 0 the zenith, column 0 north, the centre column south), and hold
+// linear Rec.709 radiance in the sky's units (sky/sun.h: 1 = 10^4 cd/m^2); a map in other units is
+// scaled by the renderer's exposure like any other. The whole sphere comes from the file, the lower
+// hemisphere included: a panorama shot above real ground already holds its ground.
 #pragma once
 
 #include "sky/sky_day.h"

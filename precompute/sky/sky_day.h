@@ -1,8 +1,8 @@
-// A whole day of sky (DESIGN.md 2.6): the analytic sky of sky/daylight.h sampled at evenly
-// spaced times, each frame projected to SH for lighting and kept as a small lat-long image for
-// the backdrop; at run time the two frames around the current time are blended, as Cove and
-// James blend their sky photographs. sky/environment_map.h builds the same SkyDay from a user's
-// HDR panoramas instead.
+// A whole day of sky (docs/ARCHITECTURE.md, Sky): the analytic sky of sky/daylight.h sampled at
+// evenly spaced times, each frame projected to SH for lighting and kept as a small lat-long image
+// for the backdrop; at run time the two frames around the current time are blended, as Cove and
+// James blend their sky photographs. sky/environment_map.h builds the same SkyDay from a user's HDR
+// panoramas instead.
 //
 // Axes and units as in sky/sun.h: y up, +x east, +z north; radiance in units of 10^4 cd/m^2,
 // linear Rec.709. Images use light/latlong.h's layout (row 0 the zenith, the centre column

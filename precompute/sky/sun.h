@@ -1,5 +1,5 @@
 // The sun: where it is for a latitude, date and local solar time, and how much of its light gets
-// through the atmosphere (DESIGN.md 2.6).
+// through the atmosphere (docs/ARCHITECTURE.md, Sky).
 //
 // Conventions shared by the whole sky module (and light/latlong.h, light/sh.h):
 //   - World axes: +y up (zenith), +x east, +z north; so -z is south and -x west. A direction

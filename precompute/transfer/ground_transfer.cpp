@@ -1,5 +1,5 @@
-// Ground transfer around a clump (DESIGN.md 2.5, "ground shadow"; Cove and James 2004 bake the
-// ground under each clump so it darkens beneath the plants and follows their motion).
+// Ground transfer around a clump (docs/ARCHITECTURE.md, Light transfer; Cove and James 2004 bake
+// the ground under each clump so it darkens beneath the plants and follows their motion).
 //
 // A square grid of points on y = 0 with normal +y, centred on the clump's base. Each point's
 // direct transfer is its visibility times the cosine, projected on SH, estimated like a vertex's

@@ -1,5 +1,5 @@
 // Ray queries for the transfer bake: one triangle mesh in an Embree 3 scene plus an optional
-// ground, the infinite plane y = 0 (DESIGN.md 2.5).
+// ground, the infinite plane y = 0 (docs/ARCHITECTURE.md, Light transfer).
 //
 // The ground is intersected analytically rather than as a big quad: it is exact at any distance,
 // costs nothing in the BVH, and a ray going down from a point at or below y = 0 hits it at t = 0,

@@ -1,8 +1,9 @@
-// The precomputed radiance transfer bake (DESIGN.md 2.5): per-vertex diffuse transfer of a plant
-// clump in spherical harmonics, shadowed by the clump and the ground, with light through thin
-// leaves and petals and interreflection between them (Sloan, Kautz and Snyder 2002, sections 4–5),
-// baked frame by frame as the clump deforms (James and Fatahalian 2003), plus the transfer of a
-// small grid of ground points around the clump so the ground darkens under and beside it.
+// The precomputed radiance transfer bake (docs/ARCHITECTURE.md, Light transfer): per-vertex diffuse
+// transfer of a plant clump in spherical harmonics, shadowed by the clump and the ground, with
+// light through thin leaves and petals and interreflection between them (Sloan, Kautz and Snyder
+// 2002, sections 4–5), baked frame by frame as the clump deforms (James and Fatahalian 2003), plus
+// the transfer of a small grid of ground points around the clump so the ground darkens under and
+// beside it.
 //
 // Conventions (every array below follows them):
 //   - SH basis, order and polar axis: light/sh.h (world +y up, order n = n^2 coefficients).

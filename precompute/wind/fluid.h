@@ -1,7 +1,7 @@
 // The wind around one plant clump: an incompressible 3D grid fluid solver after Stam 1999,
 // "Stable Fluids" (semi-Lagrangian advection, then pressure projection), with inflow at a wind
 // level's mean speed plus injected turbulence and gusts (inflow.h), and two-way coupling: plants
-// push back on the air through addForce() (DESIGN.md section 2.2).
+// push back on the air through addForce() (docs/ARCHITECTURE.md, Wind and rods).
 //
 // Units are SI: metres, seconds, m/s, kg/m^3, newtons; y is up and the ground is the plane
 // y = grid.origin.y. Air density is kAirDensity.

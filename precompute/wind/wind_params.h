@@ -19,7 +19,8 @@ struct FluidGrid {
     glm::vec3 origin{-0.96f, 0.0f, -0.96f}; // m, the minimum corner; origin.y is the ground
 };
 
-// One wind level (DESIGN.md section 2.2: four levels, calm to strong, one consistent direction).
+// One wind level (four by default, calm to strong, one direction; docs/ARCHITECTURE.md, Wind and
+// rods).
 struct WindLevelParams {
     glm::vec3 direction{1, 0, 0}; // horizontal unit vector (y is ignored and the rest renormalised)
     float meanSpeed = 2.0f;       // m/s at the reference height of 1 m above the ground

@@ -1,5 +1,5 @@
-// The choice of level of detail (DESIGN.md 2.8), one function body compiled as C++ (tests, the
-// CPU-driven path) and as GLSL (the cull pass), like motion_step.h.
+// The choice of level of detail (docs/ARCHITECTURE.md, Levels of detail), one function body
+// compiled as C++ (tests, the CPU-driven path) and as GLSL (the cull pass), like motion_step.h.
 //
 // An instance's size on screen, r (its bounding sphere's projected radius, in pixels), picks a
 // continuous LOD coordinate x in [0, kLodSelectCount - 1]: x = i on LOD i's plateau, and across

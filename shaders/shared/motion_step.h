@@ -1,7 +1,7 @@
-// The run-time motion-graph step (DESIGN.md 2.4 and 3): one function body, compiled as C++ for
-// the CPU reference and as GLSL for the animate pass, so the two agree bit for bit. Everything
-// here is integer arithmetic: the offline build (precompute/motion/motion_graph.h) turns the
-// transition probabilities and future costs into integer choice weights, so the GPU never
+// The run-time motion-graph step (docs/ARCHITECTURE.md, Motion; The run time): one function body,
+// compiled as C++ for the CPU reference and as GLSL for the animate pass, so the two agree bit for
+// bit. Everything here is integer arithmetic: the offline build (precompute/motion/motion_graph.h)
+// turns the transition probabilities and future costs into integer choice weights, so the GPU never
 // evaluates exp() and no float rounding can make the CPU and GPU walks diverge.
 //
 // Walks follow video textures (Schödl et al. 2000) over a motion graph (Kovar et al. 2002):

@@ -1,5 +1,6 @@
-// The sky's SH radiance carried into a placed clump's own frame (DESIGN.md 2.5), one function body
-// compiled as C++ (tests, CPU references) and as GLSL (compute passes), like motion_step.h.
+// The sky's SH radiance carried into a placed clump's own frame (docs/ARCHITECTURE.md, Light
+// transfer), one function body compiled as C++ (tests, CPU references) and as GLSL (compute
+// passes), like motion_step.h.
 //
 // Why: a clump's radiance transfer is baked once in the clump's frame, but each instance stands
 // at its own yaw and may be mirrored, so the sky must be expressed in that frame before the dot

@@ -1,7 +1,7 @@
-// The wind over the field at run time (DESIGN.md 3): a wind level at every point and motion tick,
-// which the animate pass turns into each instance's target level for its motion-graph step. One
-// function body, compiled as C++ for the CPU reference and as GLSL for animate.comp, so the two
-// agree bit for bit.
+// The wind over the field at run time (docs/ARCHITECTURE.md, The run time): a wind level at every
+// point and motion tick, which the animate pass turns into each instance's target level for its
+// motion-graph step. One function body, compiled as C++ for the CPU reference and as GLSL for
+// animate.comp, so the two agree bit for bit.
 //
 // Like the paper's wind generator, the level is a base level plus waves that travel across the
 // field along the wind and gusts: here, a smooth periodic wave (amplitude, wavelength, speed) and

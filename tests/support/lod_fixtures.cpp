@@ -99,8 +99,9 @@ IrisCase makeIrisCase(const std::string& preset) {
     const PlantMesh& mesh = result.clump.mesh;
     result.groups = rodGroups(mesh);
 
-    // Irradiance of a unit directional light in 9-coefficient SH (DESIGN.md 2.5: 3/32 + x/2 +
-    // 15x^2/32, x the cosine to the light), darker low in the clump as if shaded.
+    // Irradiance of a unit directional light in 9-coefficient SH (docs/ARCHITECTURE.md, Light
+    // transfer: 3/32 + x/2 + 15x^2/32, x the cosine to the light), darker low in the clump as if
+    // shaded.
     const glm::vec3 sun = glm::normalize(glm::vec3(0.3f, 0.9f, 0.2f));
     for (size_t v = 0; v < mesh.vertexCount(); ++v) {
         const float x = glm::dot(mesh.normals[v], sun);

@@ -1,5 +1,5 @@
-// The SH module against the oracles of DESIGN.md 2.5: projection (quadrature, Monte Carlo,
-// lat-long images), zonal harmonics, convolution and irradiance.
+// The SH module against the oracles of docs/ARCHITECTURE.md, Light transfer: projection
+// (quadrature, Monte Carlo, lat-long images), zonal harmonics, convolution and irradiance.
 #include "core/random.h"
 #include "light/latlong.h"
 #include "light/sh.h"
@@ -73,7 +73,7 @@ TEST(ShZonal, ClampedCosineAboutUpProjectsToTheOracle) {
     const std::vector<sh::SphereSample> upper = sh::quadratureSamples(order + 1, 2 * order + 1, 0.0, 1.0);
     const std::vector<double> projected = sh::project(order, upper, [](const glm::dvec3& d) { return d.y; });
     const std::vector<double> zonal = sh::clampedCosineZonal(order);
-    // Tolerance: the oracle values of DESIGN.md are printed to 6 decimals.
+    // Tolerance: the oracle values are given to 6 decimals (docs/ARCHITECTURE.md, Light transfer).
     EXPECT_NEAR(projected[size_t(sh::index(0, 0))], 0.886227, 1e-6);
     EXPECT_NEAR(projected[size_t(sh::index(1, 0))], 1.023327, 1e-6);
     EXPECT_NEAR(projected[size_t(sh::index(2, 0))], 0.495416, 1e-6);
@@ -114,7 +114,8 @@ TEST(ShZonal, RotatedClampedCosineProjectsLikeTheTurnedFunction) {
 }
 
 TEST(ShIrradiance, UnitDirectionalLightMatchesTheClosedForm) {
-    // DESIGN.md 2.5: E(x) = 3/32 + x/2 + 15 x^2 / 32, x the cosine between normal and light.
+    // docs/ARCHITECTURE.md, Light transfer: E(x) = 3/32 + x/2 + 15 x^2 / 32, x the cosine between
+    // normal and light.
     Random random(5);
     for (int trial = 0; trial < 8; ++trial) {
         const glm::dvec3 light = randomUnit(random);

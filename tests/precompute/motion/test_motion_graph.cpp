@@ -205,7 +205,7 @@ TEST(StronglyConnectedComponents, SmallCases) {
     EXPECT_EQ(keep, (std::vector<uint8_t>{1, 1, 1, 0, 0}));
 }
 
-// Not an assertion on time (DESIGN.md 5): prints how long a graph of one full-preset clump
+// Not an assertion on time (docs/BENCHMARKS.md): prints how long a graph of one full-preset clump
 // (~2,500 frames at rank 30) takes to build, for docs/BENCHMARKS.md.
 TEST(MotionGraph, BuildTimeAtFullScale) {
     const test::SyntheticMotion motion = test::makeSyntheticMotion(kLevels, 2, 313, 30, 7);

@@ -157,7 +157,7 @@ TEST(TileFill, DenserThanPoissonDiscs) {
         std::printf(" %u", c);
     std::printf("\ndensityVsPoissonDisc = %.3f (voxels %.3f, discs %.3f clumps per m^2)\n", ratio,
                 defaultFill().clumpDensity(), discs.clumpDensity());
-    EXPECT_GE(ratio, 1.5); // DESIGN.md section 5
+    EXPECT_GE(ratio, 1.5); // docs/BENCHMARKS.md, The numbers meadow holds itself to
     // The baseline itself respects its rule: no two discs overlap in any tile or neighbour.
     for (uint32_t t = 0; t < kCompleteWangTileCount; ++t)
         for (uint32_t u = 0; u < kCompleteWangTileCount; ++u)

@@ -218,7 +218,7 @@ TEST(SkyDay, RejectsMeaninglessParameters) {
 }
 
 TEST(SkyDay, FullPresetBuildsEveryFiveMinutes) {
-    // Timing is reported, never asserted (DESIGN.md section 5).
+    // Timing is reported, never asserted (docs/BENCHMARKS.md).
     const SkyParams params = skyParamsForPreset("full");
     const auto start = std::chrono::steady_clock::now();
     const SkyDay day = buildSkyDay(params);

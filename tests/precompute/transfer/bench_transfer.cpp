@@ -1,5 +1,6 @@
-// meadow_transfer_bench: what the PRT bake costs per frame of a procedural iris clump (DESIGN.md
-// 2.5 and section 5's precompute budget). Not a test: it asserts nothing and is run by hand.
+// meadow_transfer_bench: what the PRT bake costs per frame of a procedural iris clump
+// (docs/ARCHITECTURE.md, Light transfer; the precompute budget in docs/BENCHMARKS.md). Not a test:
+// it asserts nothing and is run by hand.
 //
 //   meadow_transfer_bench [--mesh ci|full] [--rays N] [--bounces B] [--frames F] [--ground-rays N]
 //                         [--ground-resolution R] [--threads T]

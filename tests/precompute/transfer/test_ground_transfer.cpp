@@ -1,4 +1,4 @@
-// The ground grid around a clump (DESIGN.md 2.5, "ground shadow"), a real iris clump, and
+// The ground grid around a clump (docs/ARCHITECTURE.md, Light transfer), a real iris clump, and
 // determinism across repeated bakes, frames and TBB thread counts.
 #include "test_meshes.h"
 

@@ -1,5 +1,6 @@
 // Interreflection (Sloan, Kautz and Snyder 2002, section 4): the furnace bowl with its closed-form
-// sum of bounces (DESIGN.md 2.5), and the ground as a source of first-bounce light.
+// sum of bounces (docs/ARCHITECTURE.md, Light transfer), and the ground as a source of first-bounce
+// light.
 #include "test_meshes.h"
 
 #include <gtest/gtest.h>

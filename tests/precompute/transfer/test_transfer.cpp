@@ -1,6 +1,6 @@
-// Direct transfer (transfer/transfer.h): the clamped-cosine oracle of DESIGN.md 2.5 for vertices
-// that see the whole sky, darkness under an occluder, the ground as a half-space, both faces of a
-// thin sheet, translucency, and rejection of bad input.
+// Direct transfer (transfer/transfer.h): the clamped-cosine oracle (docs/ARCHITECTURE.md, Light
+// transfer) for vertices that see the whole sky, darkness under an occluder, the ground as a
+// half-space, both faces of a thin sheet, translucency, and rejection of bad input.
 #include "core/error.h"
 #include "test_meshes.h"
 #include "transfer/sphere_sampling.h"
@@ -84,7 +84,8 @@ TEST(DirectTransfer, VertexUnderALargeOpaqueQuadIsDark) {
     double irradiance = 0.0;
     for (int i = 0; i < 9; ++i)
         irradiance += double(result.vertices.at(0, Side::Front, 0)[i]) * light[i];
-    EXPECT_NEAR(irradiance, 0.0, 0.02); // vs 1.0625 unoccluded (DESIGN.md 2.5); 9 lattice errors
+    // vs 1.0625 unoccluded (docs/ARCHITECTURE.md, Light transfer); 9 lattice errors
+    EXPECT_NEAR(irradiance, 0.0, 0.02);
 }
 
 TEST(DirectTransfer, VertexOnTheGroundSeesTheUpperHemisphere) {
