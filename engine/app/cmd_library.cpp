@@ -22,6 +22,27 @@ const char* kInspectHelp = R"(usage: meadow inspect LIB --json
 Checks a library file and prints facts about it as JSON on stdout.
 )";
 
+// What the motion-graph build adapted, in words: per wind level, a raised threshold and a loop.
+nlohmann::json graphAdaptations(const MotionGraph& g) {
+    nlohmann::json said = nlohmann::json::array();
+    for (uint32_t l = 0; l < g.levelCount; ++l) {
+        char line[160];
+        if (g.levelThresholdScale[l] != 1.0f) {
+            std::snprintf(line, sizeof line, "wind level %u: transition threshold raised %gx", l,
+                          double(g.levelThresholdScale[l]));
+            said.push_back(line);
+        }
+        if (g.levelLoopFrames[l] > 0) {
+            std::snprintf(line, sizeof line,
+                          "wind level %u: looped over %u frames (the clip ends with a blended jump back into its "
+                          "first half)",
+                          l, g.levelLoopFrames[l]);
+            said.push_back(line);
+        }
+    }
+    return said;
+}
+
 } // namespace
 
 int runPrecompute(const Args& argv) {
@@ -103,6 +124,9 @@ int runInspect(const Args& argv) {
         uint32_t levelsConnected = 0;
         for (uint8_t connected : g.levelStronglyConnected)
             levelsConnected += connected ? 1 : 0;
+        std::vector<uint32_t> levelLiveFrames(g.levelCount, 0);
+        for (uint32_t i = 0; i < g.nodeCount; ++i)
+            levelLiveFrames[g.nodeLevel[i]] += g.nodeAlive[i] ? 1 : 0;
         nlohmann::json levels = nlohmann::json::array();
         for (const LevelStats& s : c.levels)
             levels.push_back({{"meanSpeed", s.meanSpeed},
@@ -128,7 +152,11 @@ int runInspect(const Args& argv) {
                              {"crossLevelTransitions", g.crossLevelTransitionCount},
                              {"removedNodes", g.removedNodes},
                              {"stronglyConnected", g.stronglyConnected},
-                             {"levelsStronglyConnected", levelsConnected == g.levelCount}}},
+                             {"levelsStronglyConnected", levelsConnected == g.levelCount},
+                             {"levelLiveFrames", levelLiveFrames},
+                             {"levelThresholdScale", g.levelThresholdScale},
+                             {"levelLoopFrames", g.levelLoopFrames},
+                             {"adaptations", graphAdaptations(g)}}},
                            {"levels", levels}};
         // The ≤ 1 s target: seconds from a step in the wind level to playing the new level's
         // frames, over 1000 walks with the run time's own step (library/motion_graph.h).

@@ -1,6 +1,7 @@
 #include "vk/driver_workarounds.h"
 
 #include <cstdlib>
+#include <filesystem>
 #include <string_view>
 
 namespace meadow {
@@ -60,7 +61,18 @@ std::string lavapipeUnsupportedReason(const LavapipeSettings& s) {
 
 std::string applyLavapipeWorkarounds() {
     std::string note;
-    for (const auto& [name, value] : lavapipeEnvironment(lavapipeSettingsFromEnvironment())) {
+    for (auto [name, value] : lavapipeEnvironment(lavapipeSettingsFromEnvironment())) {
+        // Mesa creates only the last folder of MESA_SHADER_CACHE_DIR (and says so on stderr when
+        // its parent is missing, as ~/.cache is on a fresh machine): make the whole path here, or
+        // turn the cache off when it cannot be made.
+        if (name == "MESA_SHADER_CACHE_DIR") {
+            std::error_code error;
+            std::filesystem::create_directories(value, error);
+            if (error || !std::filesystem::is_directory(value, error)) {
+                name = "MESA_SHADER_CACHE_DISABLE";
+                value = "true";
+            }
+        }
         setenv(name.c_str(), value.c_str(), 1);
         note += (note.empty() ? "" : " ") + name + "=" + value;
     }

@@ -57,6 +57,8 @@ void writeClump(ByteWriter& w, const LibraryClump& m) {
     w.u32(g.removedNodes);
     w.u32(g.transitionCount);
     w.u32(g.crossLevelTransitionCount);
+    w.f32s(g.levelThresholdScale);
+    w.u32s(g.levelLoopFrames);
 
     w.u32(uint32_t(m.levels.size()));
     for (const LevelStats& s : m.levels) {
@@ -138,11 +140,14 @@ LibraryClump readClump(ByteReader& r, const std::string& where) {
     g.removedNodes = r.u32();
     g.transitionCount = r.u32();
     g.crossLevelTransitionCount = r.u32();
+    g.levelThresholdScale = r.f32s();
+    g.levelLoopFrames = r.u32s();
     const size_t n = g.nodeCount, e = g.edgeCount, l = g.levelCount;
     if (n != c.motion.frames || g.nodeLevel.size() != n || g.nodeAlive.size() != n || g.naturalNext.size() != n ||
         g.edgeStart.size() != n + 1 || g.edgeTarget.size() != e || g.edgeIsTransition.size() != e ||
         g.edgeProbability.size() != e || g.edgeWeight.size() != l * e || g.futureCost.size() != l * n ||
-        g.levelStronglyConnected.size() != l || g.edgeStart.back() != e)
+        g.levelStronglyConnected.size() != l || g.levelThresholdScale.size() != l || g.levelLoopFrames.size() != l ||
+        g.edgeStart.back() != e)
         throw fail("clump " + c.name + ": motion graph tables have inconsistent sizes");
     for (size_t i = 0; i < n; ++i)
         if (g.edgeStart[i] > g.edgeStart[i + 1])

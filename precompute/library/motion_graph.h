@@ -41,6 +41,12 @@ struct MotionGraph {
     uint32_t forcedClipEndTransitions = 0;         // clip ends given their best same-level jump regardless of threshold
     std::vector<uint32_t> crossLevelFallbackPairs; // (from, to) level pairs, flattened, that had too few
                                                    // transitions below threshold and took the best local minima
+    // How the build adapted each level so that it kept a usable part of its frames (a plant whose
+    // motion offers few transitions): the threshold scale its transitions passed (1 when nothing
+    // was adapted), and the frames of its loop, 0 where the level is not looped (its clips end with
+    // a jump back into their first half; motion/motion_graph.h, step 4).
+    std::vector<float> levelThresholdScale;
+    std::vector<uint32_t> levelLoopFrames;
 };
 
 // The run-time tables as spans into graph (which must outlive the result).

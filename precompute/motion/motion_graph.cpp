@@ -40,6 +40,11 @@ void checkParams(const MotionGraphParams& p) {
                     "velocityWeight non-negative, urgentQualityFloor in (0, 1], thresholdPercentile in [0, 1]");
     if (p.maxTransitionsPerLevel == 0)
         throw Error("motion graph: maxTransitionsPerLevel must be at least 1");
+    for (float scale : p.levelThresholdScale)
+        if (!(scale > 0.0f) || !std::isfinite(scale))
+            throw Error("motion graph: every levelThresholdScale must be positive and finite");
+    if (!(p.minLiveFraction >= 0.0f && p.minLiveFraction <= 0.5f))
+        throw Error("motion graph: minLiveFraction must be in [0, 0.5] (a loop keeps more than half a clip)");
 }
 
 // Local minimum of D over (i +- 1, j +- 1), neighbours taken only inside the same clips (across
@@ -186,9 +191,20 @@ std::vector<double> levelStatistics(const MotionGraph& g, const std::vector<floa
     return levelStatistic;
 }
 
+// A level's own factor on the threshold (1 where the caller adapted nothing).
+double levelScale(const MotionGraphParams& params, uint32_t level) {
+    return level < params.levelThresholdScale.size() ? double(params.levelThresholdScale[level]) : 1.0;
+}
+
+bool levelLooped(const MotionGraphParams& params, uint32_t level) {
+    return level < params.levelLooped.size() && params.levelLooped[level] != 0;
+}
+
 // The largest D of a good transition from level a to level b.
 double threshold(const MotionGraphParams& params, const std::vector<double>& levelStatistic, uint32_t a, uint32_t b) {
-    return params.thresholdScale * (a == b ? levelStatistic[a] : std::sqrt(levelStatistic[a] * levelStatistic[b]));
+    const double scale = a == b ? levelScale(params, a) : std::sqrt(levelScale(params, a) * levelScale(params, b));
+    return params.thresholdScale * scale *
+           (a == b ? levelStatistic[a] : std::sqrt(levelStatistic[a] * levelStatistic[b]));
 }
 
 // Per source frame: every local minimum of D in its row, and the transitions chosen among them.
@@ -241,9 +257,88 @@ bool alreadyChosen(const std::vector<std::vector<Candidate>>& chosen, const Cand
     return false;
 }
 
+// Where each clip's loop starts (kNoFrame for clips of levels that are not looped): the frame of
+// the clip's first half nearest in D to its last frame's successor. The jump last -> start is
+// chosen whatever else the last frame has, so start .. last is a cycle of more than half the clip.
+constexpr uint32_t kNoFrame = std::numeric_limits<uint32_t>::max();
+
+std::vector<uint32_t> closeLoops(MotionGraph& g, std::vector<std::vector<Candidate>>& chosen,
+                                 const std::vector<float>& transition, const std::vector<MotionClip>& clips,
+                                 size_t frames, const MotionGraphParams& params) {
+    std::vector<uint32_t> loopStart(clips.size(), kNoFrame);
+    g.levelLoopFrames.assign(g.levelCount, 0);
+    for (size_t c = 0; c < clips.size(); ++c) {
+        const MotionClip& clip = clips[c];
+        if (!levelLooped(params, clip.level))
+            continue;
+        const size_t last = size_t(clip.firstFrame) + clip.frameCount - 1;
+        Candidate best{uint32_t(last), 0, std::numeric_limits<float>::infinity()};
+        for (size_t j = clip.firstFrame; j < size_t(clip.firstFrame) + clip.frameCount / 2; ++j) {
+            const float value = transition[last * frames + j];
+            if (value < best.distance)
+                best = {uint32_t(last), uint32_t(j), value};
+        }
+        if (!std::isfinite(best.distance))
+            throw Error("motion graph: the clip of wind level " + std::to_string(clip.level) + " (" +
+                        std::to_string(clip.frameCount) + " frames) is too short to loop (more than " +
+                        std::to_string(2 * (params.window + 1)) + " frames are needed)");
+        if (!alreadyChosen(chosen, best))
+            chosen[last].push_back(best);
+        loopStart[c] = best.to;
+        g.levelLoopFrames[clip.level] += uint32_t(last - best.to + 1);
+    }
+    return loopStart;
+}
+
+// Whether frame f may carry a join of a looped level: inside its clip's loop, or any frame of a
+// level that is not looped.
+bool inLoop(const std::vector<uint32_t>& loopStart, const std::vector<uint32_t>& clipOf, size_t f) {
+    return loopStart[clipOf[f]] == kNoFrame || f >= loopStart[clipOf[f]];
+}
+
+// A pair of adjacent levels of which one is looped: minCrossLevelTransitions joins from a's loop
+// frames to b's, each source frame's nearest target in D, the nearest pairs first, whatever the
+// threshold. Existing transitions count only where both ends lie inside the loops.
+void joinLoopedPair(MotionGraph& g, std::vector<std::vector<Candidate>>& chosen, const std::vector<float>& transition,
+                    const std::vector<uint32_t>& clipOf, const std::vector<uint32_t>& loopStart, size_t frames,
+                    uint32_t a, uint32_t b, const MotionGraphParams& params) {
+    uint32_t have = 0;
+    std::vector<Candidate> pool;
+    for (size_t i = 0; i < frames; ++i) {
+        if (clipOf[i] == kNoClip || g.nodeLevel[i] != a || !inLoop(loopStart, clipOf, i))
+            continue;
+        for (const Candidate& c : chosen[i])
+            have += g.nodeLevel[c.to] == b && inLoop(loopStart, clipOf, c.to);
+        Candidate best{uint32_t(i), 0, std::numeric_limits<float>::infinity()};
+        for (size_t j = 0; j < frames; ++j) {
+            const float value = transition[i * frames + j];
+            if (clipOf[j] != kNoClip && g.nodeLevel[j] == b && inLoop(loopStart, clipOf, j) && value < best.distance)
+                best = {uint32_t(i), uint32_t(j), value};
+        }
+        if (std::isfinite(best.distance) && !alreadyChosen(chosen, best))
+            pool.push_back(best);
+    }
+    if (have >= params.minCrossLevelTransitions)
+        return;
+    std::sort(pool.begin(), pool.end(), candidateBefore);
+    bool added = false;
+    for (const Candidate& c : pool) {
+        if (have >= params.minCrossLevelTransitions)
+            break;
+        chosen[c.from].push_back(c);
+        ++have;
+        added = true;
+    }
+    if (added) {
+        g.crossLevelFallbackPairs.push_back(a);
+        g.crossLevelFallbackPairs.push_back(b);
+    }
+}
+
 // Adjacent levels must be joined both ways: where too few transitions were chosen, the best
 // other local minima are added (and the pair of levels recorded).
-void joinAdjacentLevels(MotionGraph& g, Candidates& candidates, const std::vector<uint32_t>& clipOf, size_t frames,
+void joinAdjacentLevels(MotionGraph& g, Candidates& candidates, const std::vector<float>& transition,
+                        const std::vector<uint32_t>& clipOf, const std::vector<uint32_t>& loopStart, size_t frames,
                         const MotionGraphParams& params) {
     const uint32_t levels = g.levelCount;
     const std::vector<std::vector<Candidate>>& minima = candidates.minima;
@@ -252,6 +347,10 @@ void joinAdjacentLevels(MotionGraph& g, Candidates& candidates, const std::vecto
         for (uint32_t b : {a - 1, a + 1}) {
             if (b >= levels) // a - 1 wraps for a = 0
                 continue;
+            if (levelLooped(params, a) || levelLooped(params, b)) {
+                joinLoopedPair(g, chosen, transition, clipOf, loopStart, frames, a, b, params);
+                continue;
+            }
             uint32_t have = 0;
             std::vector<Candidate> pool;
             for (size_t i = 0; i < frames; ++i) {
@@ -330,7 +429,8 @@ Adjacency adjacencyLists(const MotionGraph& g, std::vector<std::vector<Candidate
 // Prune to strongly connected components, the whole graph and each level, to a fixed point;
 // records which nodes live and throws when a level lost them all.
 std::vector<uint8_t> pruneToStrongComponents(MotionGraph& g, const Adjacency& lists,
-                                             const std::vector<uint32_t>& clipOf, size_t frames) {
+                                             const std::vector<uint32_t>& clipOf, size_t frames,
+                                             const MotionGraphParams& params) {
     const uint32_t levels = g.levelCount;
     const CsrGraph whole = makeCsr(lists.whole), byLevel = makeCsr(lists.withinLevel);
     std::vector<uint8_t> keep(frames, 0);
@@ -354,12 +454,21 @@ std::vector<uint8_t> pruneToStrongComponents(MotionGraph& g, const Adjacency& li
     for (size_t i = 0; i < frames; ++i)
         g.removedNodes += clipOf[i] != kNoClip && !keep[i];
     for (uint32_t l = 0; l < levels; ++l) {
-        bool any = false;
+        size_t live = 0, all = 0;
         for (size_t i = 0; i < frames; ++i)
-            any = any || (keep[i] && g.nodeLevel[i] == l);
-        if (!any)
-            throw Error("motion graph: pruning to strongly connected components left wind level " + std::to_string(l) +
-                        " without frames (too few transitions: raise thresholdScale or simulate longer)");
+            if (clipOf[i] != kNoClip && g.nodeLevel[i] == l) {
+                ++all;
+                live += keep[i];
+            }
+        if (live == 0)
+            throw MotionGraphLevelError(l, "motion graph: pruning to strongly connected components left wind level " +
+                                               std::to_string(l) +
+                                               " without frames (too few transitions: raise thresholdScale, loop "
+                                               "the level or simulate longer)");
+        if (double(live) < double(params.minLiveFraction) * double(all))
+            throw MotionGraphLevelError(l, "motion graph: pruning to strongly connected components left wind level " +
+                                               std::to_string(l) + " " + std::to_string(live) + " of its " +
+                                               std::to_string(all) + " frames (too few transitions)");
     }
     return keep;
 }
@@ -486,15 +595,19 @@ MotionGraph buildMotionGraph(const Eigen::MatrixXf& q, const std::vector<MotionC
     const size_t frames = size_t(q.cols());
     const std::vector<uint32_t> clipOf = clipOfFrames(clips, uint32_t(frames));
     MotionGraph g = graphNodes(clips, clipOf, frames, params);
+    g.levelThresholdScale.assign(g.levelCount, 1.0f);
+    for (uint32_t l = 0; l < g.levelCount; ++l)
+        g.levelThresholdScale[l] = params.thresholdScale * float(levelScale(params, l));
 
     const std::vector<float> transition = distances(q, clips, clipOf, params);
     const std::vector<double> levelStatistic = levelStatistics(g, transition, clipOf, frames, params);
     Candidates candidates = localMinima(g, transition, clipOf, frames, levelStatistic, params);
-    joinAdjacentLevels(g, candidates, clipOf, frames, params);
+    const std::vector<uint32_t> loopStart = closeLoops(g, candidates.chosen, transition, clips, frames, params);
+    joinAdjacentLevels(g, candidates, transition, clipOf, loopStart, frames, params);
     continueClipEnds(g, candidates.chosen, transition, clips, clipOf, frames);
 
     const Adjacency adjacency = adjacencyLists(g, candidates.chosen, clipOf, frames);
-    const std::vector<uint8_t> keep = pruneToStrongComponents(g, adjacency, clipOf, frames);
+    const std::vector<uint8_t> keep = pruneToStrongComponents(g, adjacency, clipOf, frames, params);
     finalEdges(g, adjacency.whole, candidates.chosen, keep, frames);
 
     const std::vector<double> quality = edgeProbabilities(g, levelStatistic, frames, params);

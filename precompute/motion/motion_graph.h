@@ -9,6 +9,7 @@
 // edge leads to them, so q needs no re-indexing and a blend partner may still show them.
 #pragma once
 
+#include "core/error.h"
 #include "library/motion_graph.h"
 #include "motion/frame_distance.h"
 
@@ -31,6 +32,21 @@ struct MotionGraphParams {
     float urgentQualityFloor = 1.0f / 16.0f; // away from the target level, a jump's relative P counts as at least this
     uint32_t blendFrames = 6;                // run-time blend length after a jump
     float frameRate = 30.0f;                 // frames per second of the simulation
+    // Per-level adaptation (empty: none). levelThresholdScale multiplies thresholdScale for the
+    // level's transitions (a cross-level pair takes the geometric mean of both). A looped level's
+    // clips end with a forced jump back into their first half (step 4), and its joins to adjacent
+    // levels are chosen inside the loops (step 3): see buildMotionGraph.
+    std::vector<float> levelThresholdScale;
+    std::vector<uint8_t> levelLooped;
+    float minLiveFraction = 0.25f; // a level keeping fewer of its frames than this fails (step 5)
+};
+
+// What buildMotionGraph throws when a level fails step 5: pruning left it without frames, or with
+// fewer than minLiveFraction of them. The caller may adapt that level and build again.
+class MotionGraphLevelError : public Error {
+  public:
+    MotionGraphLevelError(uint32_t failedLevel, const std::string& message) : Error(message), level(failedLevel) {}
+    uint32_t level;
 };
 
 // Builds the graph from reduced coordinates q (r x F, one column per frame) and the clips that
@@ -46,10 +62,17 @@ struct MotionGraphParams {
 //  3. Adjacent levels must connect for the wind to be followed: an ordered pair (a, a +- 1) with
 //     fewer than minCrossLevelTransitions takes its best local minima regardless of threshold
 //     (recorded in crossLevelFallbackPairs; the run-time blend hides the larger jump). Pairs of
-//     non-adjacent levels keep only genuine matches.
-//  4. A clip's last frame with no same-level transition gets its best same-level jump.
+//     non-adjacent levels keep only genuine matches. Where either level is looped, the pair takes
+//     minCrossLevelTransitions joins whatever the threshold, each source frame's best target, with
+//     sources and targets inside the loops (below), so the levels stay joined both ways.
+//  4. A clip's last frame with no same-level transition gets its best same-level jump. A looped
+//     level's clips end with a jump to the frame of their first half nearest in D, whatever
+//     other transitions the last frame has: that frame and everything after it form one cycle,
+//     more than half the clip (the loop), which the run time blends over like any jump.
 //  5. Pruning to a fixed point: keep the largest SCC of the whole graph, then of each level's
-//     subgraph, until nothing changes.
+//     subgraph, until nothing changes. A level left with fewer than minLiveFraction of its frames
+//     throws MotionGraphLevelError. With every level looped, the loops and their joins are
+//     strongly connected by construction, so pruning keeps every loop and no level fails.
 //  6. P per node (sigma = sigmaScale * s of the node's level); futureCost[L] by breadth-first search from L's nodes on
 //  the reversed graph.
 //     Weights for level L: with c(e) = 1 + futureCost[L](target) and Q(e) = P(e) / max P at the

@@ -24,15 +24,17 @@
 namespace meadow {
 namespace {
 
-std::vector<PlantClump> makePlants(const Scene& scene) {
+// The clumps and the one atlas every clump is drawn with: the iris atlas, with an imported
+// plant's base colours painted into its import region and the plant's UVs moved there
+// (plants/gltf_import.h).
+std::vector<PlantClump> makePlants(const Scene& scene, TextureAtlas& atlas) {
+    atlas = makeIrisAtlas(irisParamsForPreset(scene.preset).atlasSize, scene.seed);
     if (scene.plants.source == "gltf") {
-        PlantClump plant = importGltfPlant(scene.plants.gltf);
-        // An imported plant carries its own texture coordinates, but meadow draws every clump
-        // with the iris atlas: give it the leaf region's colours.
-        glm::vec2 leaf = 0.5f * (irisAtlasRegion(PartKind::Leaf).min + irisAtlasRegion(PartKind::Leaf).max);
-        for (glm::vec2& uv : plant.mesh.uvs)
-            uv = leaf;
-        return {plant};
+        GltfImportOptions options;
+        options.stemDiameter = scene.plants.stemDiameter;
+        ImportedPlant plant = importGltfPlantWithMaterials(scene.plants.gltf, options);
+        paintImportedPlant(plant, atlas);
+        return {std::move(plant.clump)};
     }
     return makeIrisClumps(scene.seed, scene.plants.clumps, irisParamsForPreset(scene.preset));
 }
@@ -67,9 +69,9 @@ Library buildLibrary(const Scene& scene, bool quiet) {
     say("sky: %zu frames (%s), SH order %d", library.sky.frames.size(),
         library.skyFromMaps ? "panoramas" : "analytic daylight", library.sky.shOrder);
 
-    std::vector<PlantClump> plants = makePlants(scene);
+    TextureAtlas atlas;
+    std::vector<PlantClump> plants = makePlants(scene, atlas);
     say("plants: %zu clumps (%s)", plants.size(), scene.plants.source.c_str());
-    TextureAtlas atlas = makeIrisAtlas(irisParamsForPreset(scene.preset).atlasSize, scene.seed);
     library.atlas = RgbaImage{atlas.width, atlas.height, atlas.rgba};
 
     say("motion: simulating %zu clumps x %zu wind levels, %.1f s each", plants.size(), scene.wind.levelSpeeds.size(),
@@ -94,6 +96,13 @@ Library buildLibrary(const Scene& scene, bool quiet) {
                        ->maxPenetration *
                    1000.0f),
             m.simulateSeconds, m.pcaSeconds, m.graphSeconds);
+        for (uint32_t l = 0; l < m.graph.levelCount; ++l)
+            if (m.graph.levelThresholdScale[l] != 1.0f || m.graph.levelLoopFrames[l] > 0)
+                say("clump %s wind level %u: too few transitions to keep its frames; threshold raised %gx%s",
+                    m.clump.name.c_str(), l, double(m.graph.levelThresholdScale[l]),
+                    m.graph.levelLoopFrames[l] > 0
+                        ? (", looped over " + std::to_string(m.graph.levelLoopFrames[l]) + " frames").c_str()
+                        : "");
         const WindResponse wind = measureWindResponse(m.graph);
         say("clump %s wind response (the walk reaching the new level's frames; median, p95): calm to strongest %.2f "
             "s, %.2f s; back %.2f s, %.2f s",

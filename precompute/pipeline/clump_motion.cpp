@@ -19,6 +19,10 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 // and frames; 1 % error of a clump takes ~10–20 modes for the busiest rods.
 constexpr uint32_t kMaxModesPerRod = 48;
 
+// How far a level's transition threshold is raised before the level is looped instead: beyond 8x
+// the level's statistic (a low quantile of its distances) jumps stop resembling the motion.
+constexpr float kMaxLevelThresholdScale = 8.0f;
+
 } // namespace
 
 std::array<float, kLodCount> lodErrorBounds(float lod0MaxError) {
@@ -115,19 +119,34 @@ ClumpMotion buildClumpMotion(const PlantClump& clump, const Scene& scene, uint64
     graphParams.frameRate = scene.motion.frameRate;
     const Eigen::MatrixXf q = Eigen::Map<const Eigen::MatrixXf>(
         out.basis.coords.data(), Eigen::Index(out.basis.modesPerFrame()), Eigen::Index(out.basis.frames));
-    // Short or slowly drifting clips may offer too few transitions below the threshold to keep
-    // every level strongly connected; loosen the threshold step by step before giving up.
-    for (int attempt = 0;; ++attempt) {
+    // A level whose motion offers too few transitions (short or slowly drifting clips, a stiff or
+    // tiny plant in calm air) loses its frames to pruning. Adapt that level and build again: its
+    // threshold doubled up to kMaxLevelThresholdScale, then its clips looped.
+    graphParams.levelThresholdScale.assign(levels, 1.0f);
+    graphParams.levelLooped.assign(levels, 0);
+    for (;;) {
         try {
             out.graph = buildMotionGraph(q, out.clips, graphParams);
             break;
-        } catch (const Error& e) {
-            if (attempt == 4)
+        } catch (const MotionGraphLevelError& e) {
+            // A looped level that still fails lost its joins to a neighbour that is not looped:
+            // loop the neighbours too (with every level looped the graph cannot fail).
+            const uint32_t level = e.level;
+            std::vector<uint8_t>& looped = graphParams.levelLooped;
+            if (graphParams.levelThresholdScale[level] < kMaxLevelThresholdScale)
+                graphParams.levelThresholdScale[level] *= 2.0f;
+            else if (!looped[level])
+                looped[level] = 1;
+            else if (level > 0 && !looped[level - 1])
+                looped[level - 1] = 1;
+            else if (level + 1 < levels && !looped[level + 1])
+                looped[level + 1] = 1;
+            else
                 throw Error("clump " + clump.name + ": " + e.what());
-            graphParams.thresholdScale *= 2.0f;
+        } catch (const Error& e) {
+            throw Error("clump " + clump.name + ": " + e.what());
         }
     }
-    out.graphThresholdScale = graphParams.thresholdScale;
     out.graphSeconds = secondsSince(start);
 
     for (const LevelSimulation& run : runs) {

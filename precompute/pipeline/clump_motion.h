@@ -24,7 +24,6 @@ struct ClumpMotion {
     MotionBasis basis;                    // what the library stores: per-LOD modes, rows, coordinates
     std::vector<MotionClip> clips;        // one per level, in frame order
     MotionGraph graph;
-    float graphThresholdScale = 1.0f; // the transition threshold's scale that connected the graph
     std::vector<LevelStats> levels;
     double simulateSeconds = 0.0, pcaSeconds = 0.0, graphSeconds = 0.0;
 };

@@ -4,20 +4,67 @@
 #include "core/error.h"
 #include "library/library_file.h"
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 namespace meadow {
 namespace {
 
 // Bump when what precompute produces changes for the same inputs.
-constexpr uint32_t kPrecomputeVersion = 8;
+constexpr uint32_t kPrecomputeVersion = 9;
 
 std::string hex(uint64_t v) {
     char buf[17];
     std::snprintf(buf, sizeof(buf), "%016llx", static_cast<unsigned long long>(v));
     return buf;
+}
+
+// The files a glTF asset names beside itself (external buffers and images, URL-decoded, relative
+// to its folder), read from its JSON (a .glb's first chunk). Nothing when it cannot be read: the
+// importer refuses such a file with a message.
+std::vector<std::filesystem::path> gltfReferencedFiles(const std::filesystem::path& file) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec))
+        return {};
+    std::ifstream in(file, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.size() >= 20 && bytes.compare(0, 4, "glTF") == 0) {
+        uint32_t length = 0;
+        std::memcpy(&length, bytes.data() + 12, 4);
+        bytes = bytes.substr(20, std::min<size_t>(length, bytes.size() - 20));
+    }
+    const nlohmann::json doc = nlohmann::json::parse(bytes, nullptr, false);
+    std::vector<std::filesystem::path> files;
+    if (!doc.is_object())
+        return files;
+    for (const char* key : {"buffers", "images"}) {
+        auto list = doc.find(key);
+        if (list == doc.end() || !list->is_array())
+            continue;
+        for (const nlohmann::json& entry : *list) {
+            if (!entry.is_object() || !entry.contains("uri") || !entry["uri"].is_string())
+                continue;
+            const std::string uri = entry["uri"].get<std::string>();
+            if (uri.rfind("data:", 0) == 0)
+                continue;
+            std::string decoded;
+            for (size_t i = 0; i < uri.size(); ++i) {
+                if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+                    std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+                    decoded.push_back(static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+                    i += 2;
+                } else {
+                    decoded.push_back(uri[i]);
+                }
+            }
+            files.push_back(file.parent_path() / decoded);
+        }
+    }
+    return files;
 }
 
 } // namespace
@@ -37,8 +84,11 @@ uint64_t libraryInputHash(const Scene& scene) {
         std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         hash = fnv1a64(bytes.data(), bytes.size(), hash);
     };
-    if (scene.plants.source == "gltf")
+    if (scene.plants.source == "gltf") {
         hashFile(scene.plants.gltf);
+        for (const std::filesystem::path& file : gltfReferencedFiles(scene.plants.gltf))
+            hashFile(file);
+    }
     for (const std::filesystem::path& map : scene.sky.maps)
         hashFile(map);
     return hash;

@@ -32,10 +32,22 @@ struct AtlasRegion {
 
 // An 8-bit sRGB-encoded channel (the atlas's texels) to linear, 0..1.
 float srgbToLinear(uint8_t value);
+// Linear 0..1 (clamped) to an 8-bit sRGB-encoded channel, rounded to nearest.
+uint8_t linearToSrgb(float linear);
 
 // Where each part sits in the iris atlas; independent of the atlas size, so meshes can be built
 // before (or without) the atlas.
 AtlasRegion irisAtlasRegion(PartKind part);
+
+// Texels [x0, x1) x [y0, y1) of an atlas.
+struct AtlasCell {
+    uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+// Where an imported plant's materials are painted (gltf_import.h, paintImportedPlant): the
+// atlas's largest square cell, the one the iris falls use (a scene of imported plants draws no
+// iris), in texels of an atlas `size` texels wide.
+AtlasCell importAtlasCell(uint32_t size);
 
 struct TextureAtlas {
     uint32_t width = 0;

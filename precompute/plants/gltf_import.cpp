@@ -2,23 +2,39 @@
 
 #include "core/error.h"
 
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <iomanip>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <tiny_gltf.h>
+#include <unordered_map>
 
 namespace meadow {
 namespace {
 
-// Images are not imported; skip decoding them so an asset with textures loads without an
-// image decoder and without failing on formats stb cannot read.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// tinygltf hands every image's bytes (from a data URI, a file or a buffer view) to this loader.
+// They are kept undecoded: only the base-colour textures the plant uses are decoded, with
+// OpenImageIO (decodeImage), so an unused image in a format meadow cannot read does no harm.
+bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                    int size, void*) {
+    image->image.assign(bytes, bytes + std::max(size, 0));
+    image->as_is = true;
     return true;
 }
+
+constexpr int kWrapRepeat = TINYGLTF_TEXTURE_WRAP_REPEAT;
+constexpr int kWrapMirror = TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT;
+constexpr int kWrapClamp = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
 
 // tinygltf's message without trailing blank space, and cut short: it may quote a whole data URI.
 std::string trimmed(std::string text) {
@@ -83,8 +99,125 @@ class Importer {
     }
 
     PlantMesh& mesh() { return mesh_; }
+    std::vector<ImportedMaterial>& materials() { return materials_; }
+    std::vector<uint32_t>& vertexMaterial() { return vertexMaterial_; }
 
   private:
+    // The material of a primitive (-1: none), one entry per (material, whether the primitive has
+    // TEXCOORD_0): without texture coordinates a texture cannot be placed, so the factor alone.
+    uint32_t materialSlot(int materialIndex, bool hasUv) {
+        const auto key = std::make_pair(materialIndex, hasUv || materialIndex < 0);
+        auto found = slots_.find(key);
+        if (found != slots_.end())
+            return found->second;
+        const uint32_t slot = static_cast<uint32_t>(materials_.size());
+        materials_.push_back(readMaterial(materialIndex, key.second));
+        slots_.emplace(key, slot);
+        return slot;
+    }
+
+    ImportedMaterial readMaterial(int materialIndex, bool hasUv) const {
+        ImportedMaterial out;
+        if (materialIndex < 0) {
+            out.name = "no material";
+            out.leafGreen = true;
+            return out;
+        }
+        if (static_cast<size_t>(materialIndex) >= model_.materials.size())
+            fail("a primitive names material " + std::to_string(materialIndex) + ", which does not exist");
+        const tinygltf::Material& material = model_.materials[static_cast<size_t>(materialIndex)];
+        out.name = material.name.empty() ? "material " + std::to_string(materialIndex) : "'" + material.name + "'";
+        const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
+        if (factor.size() == 4)
+            out.factor = glm::vec4(static_cast<float>(factor[0]), static_cast<float>(factor[1]),
+                                   static_cast<float>(factor[2]), static_cast<float>(factor[3]));
+        for (int c = 0; c < 4; ++c)
+            if (!(out.factor[c] >= 0.0f && out.factor[c] <= 1.0f))
+                fail("material " + out.name + " has a baseColorFactor outside 0..1");
+        out.mask = material.alphaMode == "MASK";
+        out.alphaCutoff = static_cast<float>(material.alphaCutoff);
+        if (!std::isfinite(out.alphaCutoff))
+            fail("material " + out.name + " has an alphaCutoff that is not finite");
+        const tinygltf::TextureInfo& info = material.pbrMetallicRoughness.baseColorTexture;
+        if (info.index < 0 || !hasUv)
+            return out;
+        const std::string what = "material " + out.name + " base colour texture";
+        if (info.texCoord != 0)
+            fail(what + " uses TEXCOORD_" + std::to_string(info.texCoord) + "; meadow reads only TEXCOORD_0");
+        if (static_cast<size_t>(info.index) >= model_.textures.size())
+            fail(what + " names texture " + std::to_string(info.index) + ", which does not exist");
+        const tinygltf::Texture& texture = model_.textures[static_cast<size_t>(info.index)];
+        if (texture.source < 0 || static_cast<size_t>(texture.source) >= model_.images.size())
+            fail(what + " (texture " + std::to_string(info.index) +
+                 ") has no image meadow can read (a PNG or JPEG source is needed)");
+        if (texture.sampler >= 0) {
+            if (static_cast<size_t>(texture.sampler) >= model_.samplers.size())
+                fail(what + " names sampler " + std::to_string(texture.sampler) + ", which does not exist");
+            const tinygltf::Sampler& sampler = model_.samplers[static_cast<size_t>(texture.sampler)];
+            auto wrap = [](int mode) { return mode == kWrapMirror || mode == kWrapClamp ? mode : kWrapRepeat; };
+            out.wrapS = wrap(sampler.wrapS);
+            out.wrapT = wrap(sampler.wrapT);
+        }
+        decodeImage(static_cast<size_t>(texture.source), what, out);
+        return out;
+    }
+
+    // The image's bytes (PNG or JPEG) decoded to 8-bit sRGB RGBA through OpenImageIO, read from
+    // memory.
+    void decodeImage(size_t imageIndex, const std::string& what, ImportedMaterial& out) const {
+        const tinygltf::Image& image = model_.images[imageIndex];
+        std::string name = "image " + std::to_string(imageIndex);
+        if (!image.uri.empty())
+            name += " ('" + image.uri + "')";
+        else if (!image.name.empty())
+            name += " '" + image.name + "'";
+        const std::vector<unsigned char>& bytes = image.image;
+        if (bytes.empty())
+            fail(what + ": " + name + " cannot be read" + (image.uri.empty() ? "" : " (no such file?)"));
+        const char* format = nullptr;
+        if (bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0)
+            format = "png";
+        else if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff)
+            format = "jpg";
+        if (format == nullptr)
+            fail(what + ": " + name + " is neither PNG nor JPEG, which are what meadow decodes");
+        OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+        OIIO::Filesystem::IOProxy* proxy = &reader;
+        OIIO::ImageSpec config;
+        config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+        config.attribute("oiio:UnassociatedAlpha", 1); // keep PNG colours as stored, not premultiplied
+        const std::string decoder = std::string("meadow-texture.") + format; // the name picks the decoder
+        std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(decoder, &config);
+        if (!in)
+            fail(what + ": " + name + " cannot be decoded: " + trimmed(OIIO::geterror()));
+        const OIIO::ImageSpec& spec = in->spec();
+        constexpr int kMaxSide = 16384;
+        if (spec.width <= 0 || spec.height <= 0 || spec.width > kMaxSide || spec.height > kMaxSide ||
+            spec.nchannels <= 0 || spec.depth != 1)
+            fail(what + ": " + name + " is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                 " texels; meadow reads 2D images of 1 to " + std::to_string(kMaxSide) + " texels a side");
+        const size_t w = static_cast<size_t>(spec.width), h = static_cast<size_t>(spec.height);
+        const size_t channels = static_cast<size_t>(spec.nchannels);
+        std::vector<uint8_t> pixels(w * h * channels);
+        if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data()))
+            fail(what + ": " + name + " cannot be decoded: " + trimmed(in->geterror()));
+        in->close();
+        out.width = static_cast<uint32_t>(w);
+        out.height = static_cast<uint32_t>(h);
+        out.texels.resize(w * h * 4);
+        for (size_t i = 0; i < w * h; ++i) {
+            const uint8_t* p = &pixels[i * channels];
+            uint8_t* q = &out.texels[i * 4];
+            if (channels >= 3) {
+                q[0] = p[0], q[1] = p[1], q[2] = p[2];
+                q[3] = channels >= 4 ? p[3] : 255;
+            } else { // grey, or grey and alpha
+                q[0] = q[1] = q[2] = p[0];
+                q[3] = channels == 2 ? p[1] : 255;
+            }
+        }
+    }
+
     glm::mat4 localTransform(const tinygltf::Node& node) const {
         if (node.matrix.size() == 16) {
             glm::mat4 m;
@@ -253,6 +386,7 @@ class Importer {
             }
         }
         int uvAccessor = attribute("TEXCOORD_0");
+        vertexMaterial_.resize(mesh_.positions.size(), materialSlot(primitive.material, uvAccessor >= 0));
         if (uvAccessor >= 0) {
             View uvs = view(uvAccessor, what + " TEXCOORD_0", TINYGLTF_TYPE_VEC2);
             if (uvs.count != count)
@@ -290,11 +424,127 @@ class Importer {
     std::string file_;
     const tinygltf::Model& model_;
     PlantMesh mesh_;
+    std::vector<ImportedMaterial> materials_;
+    std::vector<uint32_t> vertexMaterial_;
+    std::map<std::pair<int, bool>, uint32_t> slots_;
+};
+
+// --- Not a plant -------------------------------------------------------------------------------
+
+// Whether the mesh is closed once welded by position, and what it encloses.
+struct SolidMeasure {
+    bool closed = false;
+    double volume = 0.0; // |signed volume|, m^3
+    double area = 0.0;   // one side, m^2
+};
+
+SolidMeasure measureSolid(const PlantMesh& mesh, glm::vec3 lo, glm::vec3 hi) {
+    SolidMeasure out;
+    const double weld = 1e-5 * std::max(double(glm::length(hi - lo)), 1e-9);
+    struct KeyHash {
+        size_t operator()(const std::array<int64_t, 3>& k) const {
+            uint64_t h = 0xcbf29ce484222325ull;
+            for (int64_t v : k)
+                h = (h ^ static_cast<uint64_t>(v)) * 0x100000001b3ull;
+            return static_cast<size_t>(h);
+        }
+    };
+    std::unordered_map<std::array<int64_t, 3>, uint32_t, KeyHash> welded;
+    std::vector<uint32_t> id(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        const glm::dvec3 p = (glm::dvec3(mesh.positions[v]) - glm::dvec3(lo)) / weld;
+        const std::array<int64_t, 3> key{std::llround(p.x), std::llround(p.y), std::llround(p.z)};
+        id[v] = welded.emplace(key, static_cast<uint32_t>(welded.size())).first->second;
+    }
+    std::unordered_map<uint64_t, uint32_t> edges;
+    double volume = 0.0;
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const uint32_t corner[3] = {mesh.indices[i], mesh.indices[i + 1], mesh.indices[i + 2]};
+        const glm::dvec3 a = glm::dvec3(mesh.positions[corner[0]]) - glm::dvec3(lo);
+        const glm::dvec3 b = glm::dvec3(mesh.positions[corner[1]]) - glm::dvec3(lo);
+        const glm::dvec3 c = glm::dvec3(mesh.positions[corner[2]]) - glm::dvec3(lo);
+        volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+        out.area += 0.5 * glm::length(glm::cross(b - a, c - a));
+        for (int e = 0; e < 3; ++e) {
+            uint64_t p = id[corner[e]], q = id[corner[(e + 1) % 3]];
+            if (p == q)
+                continue; // a degenerate triangle's collapsed edge
+            ++edges[std::min(p, q) << 32 | std::max(p, q)];
+        }
+    }
+    out.closed = !edges.empty() && std::all_of(edges.begin(), edges.end(), [](auto& e) { return e.second == 2; });
+    out.volume = std::abs(volume);
+    return out;
+}
+
+std::string fixed(double value, int digits) {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(digits) << value;
+    return text.str();
+}
+
+// --- Painting into the atlas ---------------------------------------------------------------------
+
+// A texture in linear colour (alpha as stored), sampled with its wrap modes.
+class LinearTexture {
+  public:
+    explicit LinearTexture(const ImportedMaterial& m)
+        : width_(m.width), height_(m.height), wrapS_(m.wrapS), wrapT_(m.wrapT), texels_(size_t(m.width) * m.height) {
+        for (size_t i = 0; i < texels_.size(); ++i) {
+            const uint8_t* p = &m.texels[i * 4];
+            texels_[i] = glm::vec4(srgbToLinear(p[0]), srgbToLinear(p[1]), srgbToLinear(p[2]), float(p[3]) / 255.0f);
+        }
+    }
+
+    // The mean of up to 8 x 8 bilinear samples over a footprint `size` (UV) around `uv`, so that
+    // a texel covering many of the texture's texels averages them instead of aliasing.
+    glm::vec4 filtered(glm::dvec2 uv, glm::dvec2 size) const {
+        const int nx = static_cast<int>(std::clamp(std::ceil(size.x * double(width_)), 1.0, 8.0));
+        const int ny = static_cast<int>(std::clamp(std::ceil(size.y * double(height_)), 1.0, 8.0));
+        glm::vec4 sum(0.0f);
+        for (int y = 0; y < ny; ++y)
+            for (int x = 0; x < nx; ++x)
+                sum += bilinear(uv + size * glm::dvec2((x + 0.5) / nx - 0.5, (y + 0.5) / ny - 0.5));
+        return sum / float(nx * ny);
+    }
+
+  private:
+    static int64_t wrap(int64_t i, int64_t n, int mode) {
+        if (mode == kWrapClamp)
+            return std::clamp<int64_t>(i, 0, n - 1);
+        if (mode == kWrapMirror) {
+            const int64_t j = ((i % (2 * n)) + 2 * n) % (2 * n);
+            return j < n ? j : 2 * n - 1 - j;
+        }
+        return ((i % n) + n) % n;
+    }
+    glm::vec4 texel(int64_t x, int64_t y) const {
+        return texels_[size_t(wrap(y, height_, wrapT_)) * width_ + size_t(wrap(x, width_, wrapS_))];
+    }
+    // Repeating modes repeat every 2 (mirrored: every 2, plain: every 1), and clamping is the same
+    // everywhere beyond [-1, 2]: reducing UVs there keeps the texel indices small.
+    static double reduce(double u, int mode) {
+        return mode == kWrapClamp ? std::clamp(u, -1.0, 2.0) : u - 2.0 * std::floor(0.5 * u);
+    }
+    glm::vec4 bilinear(glm::dvec2 uv) const {
+        const double x = reduce(uv.x, wrapS_) * double(width_) - 0.5;
+        const double y = reduce(uv.y, wrapT_) * double(height_) - 0.5;
+        const double x0 = std::floor(x), y0 = std::floor(y);
+        const float fx = float(x - x0), fy = float(y - y0);
+        const auto ix = static_cast<int64_t>(x0), iy = static_cast<int64_t>(y0);
+        const glm::vec4 top = glm::mix(texel(ix, iy), texel(ix + 1, iy), fx);
+        const glm::vec4 bottom = glm::mix(texel(ix, iy + 1), texel(ix + 1, iy + 1), fx);
+        return glm::mix(top, bottom, fy);
+    }
+
+    int64_t width_, height_;
+    int wrapS_, wrapT_;
+    std::vector<glm::vec4> texels_;
 };
 
 } // namespace
 
-PlantClump importGltfPlant(const std::filesystem::path& path) {
+ImportedPlant importGltfPlantWithMaterials(const std::filesystem::path& path, const GltfImportOptions& options) {
     std::string file = path.string();
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
@@ -303,7 +553,7 @@ PlantClump importGltfPlant(const std::filesystem::path& path) {
                                                        : ": cannot open (no such file)"));
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skipImage, nullptr);
+    loader.SetImageLoader(keepImageBytes, nullptr);
     std::string err, warn;
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -323,7 +573,10 @@ PlantClump importGltfPlant(const std::filesystem::path& path) {
         importer.fail("the default scene " + std::to_string(sceneIndex) + " does not exist");
     importer.walk(model.scenes[sceneIndex].nodes);
 
-    PlantClump clump;
+    ImportedPlant imported;
+    imported.materials = std::move(importer.materials());
+    imported.vertexMaterial = std::move(importer.vertexMaterial());
+    PlantClump& clump = imported.clump;
     clump.name = path.stem().string();
     clump.plants = 1;
     clump.mesh = std::move(importer.mesh());
@@ -346,6 +599,21 @@ PlantClump importGltfPlant(const std::filesystem::path& path) {
         importer.fail(message.str());
     }
 
+    // Not a plant: a closed solid that fills much of its box and is thick for its size.
+    const SolidMeasure solid = measureSolid(mesh, lo, hi);
+    const glm::dvec3 extent = glm::dvec3(hi) - glm::dvec3(lo);
+    const double boxVolume = extent.x * extent.y * extent.z;
+    const double longest = std::max({extent.x, extent.y, extent.z});
+    if (solid.closed && boxVolume > 0.0 && solid.area > 0.0) {
+        const double fill = solid.volume / boxVolume;
+        const double thickness = 2.0 * solid.volume / solid.area;
+        if (fill > kImportSolidMaxFill && thickness > kImportSolidMaxThickness * longest)
+            importer.fail("is a closed solid enclosing " + fixed(100.0 * fill, 0) + "% of its bounding box (" +
+                          fixed(boxVolume, 2) + " m³) with a mean thickness of " + fixed(thickness, 2) + " m (" +
+                          fixed(100.0 * thickness / longest, 0) + "% of its " + fixed(longest, 2) +
+                          " m extent), not a plant: meadow simulates thin blades and stems on elastic rods");
+    }
+
     // Clump space: the base of the bounding box's centre axis at the origin, like the rhizomes
     // of the procedural clumps.
     glm::vec3 base(0.5f * (lo.x + hi.x), lo.y, 0.5f * (lo.z + hi.z));
@@ -359,20 +627,54 @@ PlantClump importGltfPlant(const std::filesystem::path& path) {
     rod.plant = 0;
     glm::vec2 axis(0.0f);
     float spacing = height / static_cast<float>(kImportRodNodes - 1);
+    auto nodeAt = [&](float y) {
+        return std::min(static_cast<uint32_t>(std::lround(std::max(y - lo.y, 0.0f) / spacing)), kImportRodNodes - 1);
+    };
     for (uint32_t k = 0; k < kImportRodNodes; ++k)
         rod.restNodes.emplace_back(axis.x, lo.y + spacing * static_cast<float>(k), axis.y);
-    // Per node, the plant's horizontal extent in the band around it: its drag area and
-    // collision radius.
-    rod.width.assign(kImportRodNodes, 0.0f);
-    for (const glm::vec3& p : mesh.positions) {
-        uint32_t k = std::min(static_cast<uint32_t>(std::lround((p.y - lo.y) / spacing)), kImportRodNodes - 1);
-        rod.width[k] = std::max(rod.width[k], 2.0f * glm::length(glm::vec2(p.x, p.z) - axis));
+    // The foliage, each triangle on the node at its height: its mass, and its drag. Per node the
+    // width (drag area per length; a lone rod has no contacts, so it is no collision radius) is
+    // half the band's one-sided area over the band's length (leaves face the wind at all angles),
+    // at most the plant's horizontal extent there.
+    rod.nodeMass.assign(kImportRodNodes, 0.0f);
+    std::vector<float> bandArea(kImportRodNodes, 0.0f), reach(kImportRodNodes, 0.0f);
+    double foliage = 0.0;
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const glm::vec3 a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
+                        c = mesh.positions[mesh.indices[i + 2]];
+        const float area = 0.5f * glm::length(glm::cross(b - a, c - a));
+        const uint32_t k = nodeAt((a.y + b.y + c.y) / 3.0f);
+        rod.nodeMass[k] += area * kImportLeafArealDensity;
+        bandArea[k] += area;
+        foliage += area * kImportLeafArealDensity;
     }
-    for (float& w : rod.width)
-        w = std::max(w, 0.002f);
-    // The asset says nothing about stiffness; a diameter of 1% of the height is a slender
-    // herbaceous stem.
-    rod.thickness = std::max(0.01f * height, 0.001f);
+    for (const glm::vec3& p : mesh.positions) {
+        uint32_t k = nodeAt(p.y);
+        reach[k] = std::max(reach[k], 2.0f * glm::length(glm::vec2(p.x, p.z) - axis));
+    }
+    rod.width.assign(kImportRodNodes, 0.0f);
+    for (uint32_t k = 0; k < kImportRodNodes; ++k) {
+        const float band = k == 0 || k + 1 == kImportRodNodes ? 0.5f * spacing : spacing;
+        rod.width[k] = std::max(std::min(0.5f * bandArea[k] / band, reach[k]), 0.002f);
+    }
+    // The stem: its diameter from the scene, or the one whose rigidity bends the plant held out
+    // level by kImportDefaultSag of its length under its own weight, stem included (a fixed
+    // point: the stem's mass grows as the square root of the rigidity asks).
+    constexpr double kGravity = 9.81;
+    auto rigidityOf = [](double d) { return double(kImportStemModulus) * glm::pi<double>() * std::pow(d, 4.0) / 64.0; };
+    auto stemMass = [&](double d) { return double(kImportStemDensity) * glm::pi<double>() * 0.25 * d * d * height; };
+    double diameter = options.stemDiameter ? double(*options.stemDiameter) : 0.01 * double(height);
+    if (!options.stemDiameter)
+        for (int iteration = 0; iteration < 16; ++iteration) {
+            const double rigidity = (foliage + stemMass(diameter)) * kGravity * double(height) * double(height) /
+                                    (8.0 * double(kImportDefaultSag));
+            diameter = std::pow(64.0 * rigidity / (double(kImportStemModulus) * glm::pi<double>()), 0.25);
+        }
+    if (!(diameter > 0.0) || !std::isfinite(diameter))
+        importer.fail("has no usable stem diameter (" + std::to_string(diameter) + " m)");
+    rod.thickness = static_cast<float>(diameter);
+    rod.bendRigidity = static_cast<float>(rigidityOf(diameter));
+    rod.linearDensity = static_cast<float>(stemMass(diameter) / double(height));
     clump.rods.push_back(std::move(rod));
 
     const Rod& r = clump.rods[0];
@@ -385,7 +687,110 @@ PlantClump importGltfPlant(const std::filesystem::path& path) {
     }
     mesh.parts.assign(mesh.positions.size(), PartKind::Other);
     checkPlantClump(clump, "glTF " + file);
-    return clump;
+    if (imported.vertexMaterial.size() != mesh.positions.size())
+        importer.fail("lost track of its materials (" + std::to_string(imported.vertexMaterial.size()) + " for " +
+                      std::to_string(mesh.positions.size()) + " vertices)");
+    return imported;
+}
+
+PlantClump importGltfPlant(const std::filesystem::path& path, const GltfImportOptions& options) {
+    return importGltfPlantWithMaterials(path, options).clump;
+}
+
+void paintImportedPlant(ImportedPlant& plant, TextureAtlas& atlas) {
+    PlantMesh& mesh = plant.clump.mesh;
+    if (plant.vertexMaterial.size() != mesh.uvs.size())
+        throw Error("imported plant " + plant.clump.name + ": " + std::to_string(plant.vertexMaterial.size()) +
+                    " vertex materials for " + std::to_string(mesh.uvs.size()) + " vertices");
+    if (atlas.width == 0 || atlas.height != atlas.width || atlas.rgba.size() != size_t(atlas.width) * atlas.height * 4)
+        throw Error("imported plant " + plant.clump.name + ": the atlas is empty or not square");
+    for (uint32_t m : plant.vertexMaterial)
+        if (m >= plant.materials.size())
+            throw Error("imported plant " + plant.clump.name + ": a vertex names material " + std::to_string(m) +
+                        " of " + std::to_string(plant.materials.size()));
+
+    // Materials used by some vertex and not leaf green get a cell of the import region each.
+    std::vector<uint8_t> used(plant.materials.size(), 0);
+    for (uint32_t m : plant.vertexMaterial)
+        used[m] = 1;
+    std::vector<uint32_t> cellIndex(plant.materials.size(), UINT32_MAX);
+    uint32_t cells = 0;
+    for (size_t m = 0; m < plant.materials.size(); ++m)
+        if (used[m] && !plant.materials[m].leafGreen)
+            cellIndex[m] = cells++;
+
+    const AtlasRegion leafRegion = irisAtlasRegion(PartKind::Leaf);
+    const glm::vec2 leaf = 0.5f * (leafRegion.min + leafRegion.max);
+    const AtlasCell importCell = importAtlasCell(atlas.width);
+    const uint32_t columns = cells == 0 ? 1 : static_cast<uint32_t>(std::ceil(std::sqrt(double(cells))));
+    const uint32_t rows = cells == 0 ? 1 : (cells + columns - 1) / columns;
+    const float size = static_cast<float>(atlas.width);
+    for (size_t m = 0; m < plant.materials.size(); ++m) {
+        const ImportedMaterial& material = plant.materials[m];
+        if (cellIndex[m] == UINT32_MAX) {
+            if (used[m])
+                for (size_t v = 0; v < mesh.uvs.size(); ++v)
+                    if (plant.vertexMaterial[v] == m)
+                        mesh.uvs[v] = leaf;
+            continue;
+        }
+        const uint32_t col = cellIndex[m] % columns, row = cellIndex[m] / columns;
+        const uint32_t cw = importCell.x1 - importCell.x0, ch = importCell.y1 - importCell.y0;
+        const uint32_t x0 = importCell.x0 + cw * col / columns, x1 = importCell.x0 + cw * (col + 1) / columns;
+        const uint32_t y0 = importCell.y0 + ch * row / rows, y1 = importCell.y0 + ch * (row + 1) / rows;
+        // Painted a few texels beyond the UV rectangle, with its edge colours (as the iris parts).
+        const uint32_t side = std::min(x1 - x0, y1 - y0);
+        const uint32_t pad = std::min(std::max(2u, side / 32), (side - 1) / 2);
+        const AtlasRegion region{glm::vec2(float(x0 + pad), float(y0 + pad)) / size,
+                                 glm::vec2(float(x1 - pad), float(y1 - pad)) / size};
+        const bool textured = material.width > 0 && material.height > 0 &&
+                              material.texels.size() == size_t(material.width) * material.height * 4;
+
+        // The texture's UV box: [0, 1] when every UV lies in it, else whole periods around them.
+        glm::dvec2 boxMin(0.0), boxMax(1.0);
+        if (textured) {
+            glm::dvec2 lo(INFINITY), hi(-INFINITY);
+            for (size_t v = 0; v < mesh.uvs.size(); ++v)
+                if (plant.vertexMaterial[v] == m) {
+                    lo = glm::min(lo, glm::dvec2(mesh.uvs[v]));
+                    hi = glm::max(hi, glm::dvec2(mesh.uvs[v]));
+                }
+            if (lo.x < 0.0 || lo.y < 0.0 || hi.x > 1.0 || hi.y > 1.0) {
+                boxMin = glm::floor(lo);
+                boxMax = glm::max(glm::ceil(hi), boxMin + 1.0);
+            }
+        }
+        const glm::dvec2 boxSize = boxMax - boxMin;
+
+        std::optional<LinearTexture> texture;
+        if (textured)
+            texture.emplace(material);
+        const glm::dvec2 regionSize = glm::dvec2(region.max - region.min);
+        const glm::dvec2 footprint = boxSize / (regionSize * double(size)); // one atlas texel, in texture UV
+        for (uint32_t y = y0; y < y1; ++y)
+            for (uint32_t x = x0; x < x1; ++x) {
+                const glm::dvec2 uv((x + 0.5) / size, (y + 0.5) / size);
+                const glm::dvec2 local = glm::clamp((uv - glm::dvec2(region.min)) / regionSize, 0.0, 1.0);
+                glm::vec4 colour = material.factor;
+                if (texture)
+                    colour *= texture->filtered(boxMin + local * boxSize, footprint);
+                uint8_t* pixel = &atlas.rgba[(size_t(y) * atlas.width + x) * 4];
+                pixel[0] = linearToSrgb(colour.r);
+                pixel[1] = linearToSrgb(colour.g);
+                pixel[2] = linearToSrgb(colour.b);
+                pixel[3] = !material.mask || colour.a >= material.alphaCutoff ? 255 : 0;
+            }
+        for (size_t v = 0; v < mesh.uvs.size(); ++v) {
+            if (plant.vertexMaterial[v] != m)
+                continue;
+            if (!textured) {
+                mesh.uvs[v] = 0.5f * (region.min + region.max);
+                continue;
+            }
+            const glm::dvec2 local = (glm::dvec2(mesh.uvs[v]) - boxMin) / boxSize;
+            mesh.uvs[v] = region.map(glm::vec2(local));
+        }
+    }
 }
 
 } // namespace meadow

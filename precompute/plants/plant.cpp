@@ -62,6 +62,12 @@ void checkPlantClump(const PlantClump& clump, const std::string& what) {
                 throw Error(name + " has a node that is not finite");
         if (!(rod.thickness > 0.0f) || !std::isfinite(rod.tipMass) || rod.tipMass < 0.0f)
             throw Error(name + " has a thickness or tip mass out of range");
+        if (!(rod.bendRigidity >= 0.0f) || !std::isfinite(rod.bendRigidity) || !(rod.linearDensity >= 0.0f) ||
+            !std::isfinite(rod.linearDensity))
+            throw Error(name + " has a bending rigidity or linear density out of range");
+        for (float m : rod.nodeMass)
+            if (!(m >= 0.0f) || !std::isfinite(m))
+                throw Error(name + " has a node mass out of range");
     }
     for (size_t i = 0; i < n; ++i) {
         const SkinBinding& b = mesh.skin[i];

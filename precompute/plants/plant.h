@@ -33,6 +33,11 @@ struct Rod {
     // kg carried rigidly at each node besides tipMass (a second flower lower on the stem): one
     // entry per node, or empty when nothing else hangs on the rod.
     std::vector<float> nodeMass;
+    // A rod's own material, set by the glTF importer (gltf_import.h); 0 keeps the simulator's
+    // defaults for the kind (sim/rod_system.h RodMaterial: a rigidity per kind, a mass from
+    // `width`), as for the procedural irises.
+    float bendRigidity = 0.0f;  // EI, N m^2
+    float linearDensity = 0.0f; // kg/m of the rod itself, besides tipMass and nodeMass
 };
 
 // Vertex rest position == mix(rod.restNodes[segment], rod.restNodes[segment + 1], t) + offset.
@@ -50,8 +55,8 @@ struct SkinBinding {
 struct PlantMesh {
     std::vector<glm::vec3> positions; // rest pose, clump space
     std::vector<glm::vec3> normals;   // unit length, one side of the sheet
-    std::vector<glm::vec2> uvs;       // into the one texture atlas (procedural plants) or the
-                                      // asset's own texture (imported plants)
+    std::vector<glm::vec2> uvs;       // into the one texture atlas (imported plants: the asset's own
+                                      // until gltf_import.h paintImportedPlant moves them there)
     std::vector<uint32_t> indices;    // triangle list
     std::vector<SkinBinding> skin;    // one per vertex
     std::vector<PartKind> parts;      // one per vertex

@@ -3,6 +3,7 @@
 #include "core/error.h"
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <set>
 
@@ -98,9 +99,12 @@ class Checker {
   private:
     // A bound as written in the code: the shortest decimal that reads back as the same float
     // (0.002, not the double 0.0020000000949949026), with ".0" on whole numbers.
+    // Small fractions stay decimal too (0.0005, not 5e-04).
     static std::string fmt(float f) {
         char text[32];
-        auto [end, ec] = std::to_chars(text, text + sizeof(text), f);
+        const bool fraction = std::abs(f) >= 1e-4f && std::abs(f) < 1.0f;
+        auto [end, ec] = fraction ? std::to_chars(text, text + sizeof(text), f, std::chars_format::fixed)
+                                  : std::to_chars(text, text + sizeof(text), f);
         std::string out(text, ec == std::errc() ? end : text);
         if (out.find_first_of(".en") == std::string::npos)
             out += ".0";
@@ -228,7 +232,7 @@ void readCamera(const json& cam, SceneCamera& camera, const Checker& check) {
 
 // Plants: iris clumps, or one clump from a glTF file next to the scene.
 void readPlants(const json& plants, const std::filesystem::path& path, PlantsParams& spec, const Checker& check) {
-    check.onlyKeys(plants, "plants", {"source", "clumps", "gltf"});
+    check.onlyKeys(plants, "plants", {"source", "clumps", "gltf", "stemDiameter"});
     const json& source = plants.value("source", json("iris"));
     if (!source.is_string() || (source != "iris" && source != "gltf"))
         check.fail("plants.source", "must be \"iris\" or \"gltf\" (got " + describe(source) + ")");
@@ -240,6 +244,12 @@ void readPlants(const json& plants, const std::filesystem::path& path, PlantsPar
             check.fail("plants.gltf", "must be a file name");
         spec.gltf = path.parent_path() / file.get<std::string>();
         spec.clumps = 1;
+    }
+    if (plants.contains("stemDiameter")) {
+        if (spec.source != "gltf")
+            check.fail("plants.stemDiameter",
+                       "applies only to plants.source \"gltf\" (the irises' stems are part of the iris model)");
+        spec.stemDiameter = check.number(plants["stemDiameter"], "plants.stemDiameter", 0.0005f, 0.5f);
     }
 }
 

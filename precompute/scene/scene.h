@@ -48,6 +48,9 @@ struct PlantsParams {
     std::string source = "iris"; // "iris" or "gltf"
     uint32_t clumps = 4;         // procedural clump variants
     std::filesystem::path gltf;  // source "gltf": the file, relative to the scene file
+    // source "gltf": the imported rod's stem diameter (m), which sets its bending stiffness
+    // (plants/gltf_import.h); none: the importer's default. Refused with source "iris".
+    std::optional<float> stemDiameter;
 };
 
 // The wind the clumps are simulated in: one direction, one mean speed per level (calm first).

@@ -85,7 +85,8 @@ RodSystem::RodSystem(const std::vector<Rod>& rods, const RodMaterial& material) 
         for (size_t i = 0; i + 1 < n; ++i) {
             float len = restLength_[first + i];
             float w = 0.5f * (rod.width[i] + rod.width[i + 1]);
-            float segmentMass = rod.kind == RodKind::Stem
+            float segmentMass = rod.linearDensity > 0.0f ? rod.linearDensity * len
+                                : rod.kind == RodKind::Stem
                                     ? material.stemDensity * glm::pi<float>() * 0.25f * w * w * len
                                     : material.leafArealDensity * w * len;
             m[i] += 0.5f * segmentMass;
@@ -102,13 +103,23 @@ RodSystem::RodSystem(const std::vector<Rod>& rods, const RodMaterial& material) 
         m[n - 1] += rod.tipMass;
         for (size_t i = 0; i < rod.nodeMass.size() && i < n; ++i)
             m[i] += rod.nodeMass[i]; // a second flower lower on a stem
-        float rigidity = rod.kind == RodKind::Stem ? material.stemBendRigidity : material.leafBendRigidity;
+        const bool ownRigidity = rod.bendRigidity > 0.0f;
+        float rigidity = ownRigidity                 ? rod.bendRigidity
+                         : rod.kind == RodKind::Stem ? material.stemBendRigidity
+                                                     : material.leafBendRigidity;
         for (size_t i = 0; i < n; ++i) {
             mass_.push_back(std::max(m[i], 1e-6f));
             inverseMass_.push_back(i == 0 ? 0.0f : 1.0f / std::max(m[i], 1e-6f));
             float len = restLength_[first + i];
             bendStiffness_.push_back(i + 1 < n ? rigidity / (len * len * len) : 0.0f);
             dragArea_.push_back(area[i]);
+        }
+        // A rod of its own rigidity (an imported plant's stem) may be stiffer than the explicit
+        // bending step can carry: its springs are capped by the segment's reduced mass (step()).
+        for (size_t i = 0; i < n; ++i) {
+            size_t a = first + i, b = a + 1;
+            bendLimitMass_.push_back(ownRigidity && i + 1 < n ? 1.0f / (inverseMass_[a] + inverseMass_[b]) : 0.0f);
+            ownMaterial_.push_back(ownRigidity || rod.linearDensity > 0.0f);
         }
         // Collision capsules: one per segment, plus a flower sphere at each stem tip.
         for (size_t i = 0; i + 1 < n; ++i) {
@@ -165,6 +176,13 @@ void RodSystem::updateContactCandidates(float margin) {
     }
 }
 
+float RodSystem::bendStiffness(uint32_t node, float dt) const {
+    const float k = bendStiffness_[node];
+    if (bendLimitMass_[node] == 0.0f)
+        return k;
+    return std::min(k, kBendStabilityLimit * bendLimitMass_[node] / (dt * dt));
+}
+
 void RodSystem::step(float dt, const AirCoupling& air, float airForceWeight) {
     const size_t nodes = position_.size();
     std::fill(force_.begin(), force_.end(), glm::vec3(0.0f));
@@ -180,7 +198,7 @@ void RodSystem::step(float dt, const AirCoupling& air, float airForceWeight) {
             uint32_t a = first + i, b = a + 1;
             glm::vec3 restDir = transport * ((rest_[b] - rest_[a]) / restLength_[a]);
             glm::vec3 target = position_[a] + restDir * restLength_[a];
-            float k = bendStiffness_[a];
+            float k = bendStiffness(a, dt);
             glm::vec3 f = k * (target - position_[b]);
             force_[b] += f;
             force_[a] -= f;
@@ -225,6 +243,10 @@ void RodSystem::step(float dt, const AirCoupling& air, float airForceWeight) {
         if (inverseMass_[i] == 0.0f || position_[i].y > kGroundClearance + 0.002f || rest_[i].y < kGroundClearance)
             continue;
         float damping = 2.0f * std::sqrt(material_.groundStiffness * mass_[i]);
+        // On the light nodes of a rod of its own material (an imported plant's soft stem lying on
+        // the ground) that explicit dashpot would overshoot: the exact decay over the step instead.
+        if (ownMaterial_[i])
+            damping = mass_[i] / dt * (1.0f - std::exp(-damping * dt / mass_[i]));
         force_[i].x -= damping * velocity_[i].x;
         force_[i].z -= damping * velocity_[i].z;
     }
@@ -336,7 +358,7 @@ void RodSystem::step(float dt, const AirCoupling& air, float airForceWeight) {
             float w = inverseMass_[a] + inverseMass_[b];
             if (w == 0.0f)
                 continue;
-            float c = material_.bendDampingRatio * 2.0f * std::sqrt(bendStiffness_[a] * mass_[b]);
+            float c = material_.bendDampingRatio * 2.0f * std::sqrt(bendStiffness(a, dt) * mass_[b]);
             float keep = std::exp(-c * w * dt);
             glm::vec3 relative = velocity_[b] - velocity_[a];
             glm::vec3 change = (1.0f - keep) * relative / w;

@@ -11,7 +11,8 @@
 //           positions: stretch with a small compliance, and penalty contacts between segment
 //           capsules of different rods and against the ground, solved implicitly as constraints
 //           with compliance 1/stiffness (stable for stiff contacts on light blade tips)
-// Stiffness comes from a bending rigidity EI (N m^2): a segment of length L gets k = EI / L^3.
+// Stiffness comes from a bending rigidity EI (N m^2), per kind (RodMaterial) or the rod's own
+// (Rod::bendRigidity, imported plants): a segment of length L gets k = EI / L^3.
 // Units: SI (m, s, kg, N).
 #pragma once
 
@@ -82,6 +83,11 @@ class RodSystem {
         uint32_t first, second; // capsule indices
         float threshold;        // contact distance: r1 + r2, or less when the rest pose is closer
     };
+    // The bending spring of the segment from `node` for a step of dt: bendStiffness_, capped for
+    // rods of their own rigidity so that omega dt <= 0.5 (symplectic Euler needs omega dt < 2;
+    // a node feels two springs). A stem that stiff already rings above 100 Hz: it looks rigid.
+    float bendStiffness(uint32_t node, float dt) const;
+    static constexpr float kBendStabilityLimit = 0.25f;
     float capsuleDistance(const Capsule& p, const Capsule& q, glm::vec3& pointP, glm::vec3& pointQ, float& s,
                           float& t) const;
 
@@ -92,6 +98,10 @@ class RodSystem {
     std::vector<float> inverseMass_, mass_;
     std::vector<float> restLength_;    // per node: length of the segment from this node to the next
     std::vector<float> bendStiffness_; // per node: spring pulling the next node, N/m
+    // per node: the reduced mass of the segment from it when its rod has its own rigidity
+    // (Rod::bendRigidity), else 0; caps the spring at kBendStabilityLimit * mass / dt^2
+    std::vector<float> bendLimitMass_;
+    std::vector<uint8_t> ownMaterial_; // per node: its rod has its own rigidity or density (Rod)
     std::vector<float> dragArea_;      // per node: area of the segment starting here, m^2
     std::vector<float> stretchLambda_;
     std::vector<float> contactLambda_;

@@ -170,6 +170,9 @@ TEST(MotionGraph, StrictThresholdFallsBackToTheBestCrossLevelPairs) {
     // minima, and the pruned graph must stay strongly connected.
     MotionGraphParams params;
     params.thresholdScale = 0.2f;
+    // So strict that level 3 keeps 7 of its 375 frames, which the live-fraction check would refuse
+    // (ALevelThatKeepsTooFewFramesFailsByName); here only the joins are under test.
+    params.minLiveFraction = 0.0f;
     const MotionGraph g = buildMotionGraph(syntheticMotion().q, syntheticMotion().clips, params);
     EXPECT_FALSE(g.crossLevelFallbackPairs.empty());
     for (size_t k = 0; k + 1 < g.crossLevelFallbackPairs.size(); k += 2) {
@@ -179,6 +182,86 @@ TEST(MotionGraph, StrictThresholdFallsBackToTheBestCrossLevelPairs) {
     EXPECT_TRUE(g.stronglyConnected);
     for (uint32_t level = 0; level < g.levelCount; ++level)
         EXPECT_TRUE(g.levelStronglyConnected[level]);
+}
+
+// Two wind levels whose motion only drifts (a plant slowly bending further): no frame resembles an
+// earlier one, so only the forced clip ends and the level joins make transitions.
+std::vector<MotionClip> driftingClips(Eigen::MatrixXf& q) {
+    constexpr int kFrames = 60;
+    q.resize(2, 2 * kFrames);
+    for (int t = 0; t < kFrames; ++t) {
+        q.col(t) << 0.01f * float(t), 0.05f * std::sin(0.3f * float(t));
+        q.col(kFrames + t) << 0.02f * float(t) + 0.3f, 0.1f * std::cos(0.5f * float(t));
+    }
+    return {{0, 0, kFrames}, {1, kFrames, kFrames}};
+}
+
+TEST(MotionGraph, ALevelThatKeepsTooFewFramesFailsByName) {
+    Eigen::MatrixXf q;
+    const std::vector<MotionClip> clips = driftingClips(q);
+    MotionGraphParams params;
+    params.thresholdScale = 0.0f; // nothing passes: a clip end's forced jump lands a few frames back
+    try {
+        buildMotionGraph(q, clips, params);
+        FAIL() << "a level of drift kept its frames without transitions";
+    } catch (const MotionGraphLevelError& e) {
+        EXPECT_LT(e.level, 2u);
+        EXPECT_NE(std::string(e.what()).find("wind level " + std::to_string(e.level)), std::string::npos) << e.what();
+    }
+}
+
+TEST(MotionGraph, LoopedLevelsKeepMoreThanHalfTheirFramesAndStayJoined) {
+    Eigen::MatrixXf q;
+    const std::vector<MotionClip> clips = driftingClips(q);
+    MotionGraphParams params;
+    params.thresholdScale = 0.0f;
+    params.levelLooped = {1, 1};
+    const MotionGraph g = buildMotionGraph(q, clips, params);
+    EXPECT_TRUE(g.stronglyConnected);
+    ASSERT_EQ(g.levelLoopFrames.size(), 2u);
+    for (const MotionClip& clip : clips) {
+        EXPECT_TRUE(g.levelStronglyConnected[clip.level]);
+        uint32_t live = 0;
+        for (uint32_t f = clip.firstFrame; f < clip.firstFrame + clip.frameCount; ++f)
+            live += g.nodeAlive[f];
+        EXPECT_GT(live, clip.frameCount / 2) << "level " << clip.level;
+        EXPECT_GT(g.levelLoopFrames[clip.level], clip.frameCount / 2);
+        EXPECT_LE(g.levelLoopFrames[clip.level], live);
+        // The last frame jumps back into the clip's first half.
+        const uint32_t last = clip.firstFrame + clip.frameCount - 1;
+        bool loops = false;
+        for (uint32_t e = g.edgeStart[last]; e < g.edgeStart[last + 1]; ++e)
+            loops = loops ||
+                    (g.edgeTarget[e] >= clip.firstFrame && g.edgeTarget[e] < clip.firstFrame + clip.frameCount / 2);
+        EXPECT_TRUE(loops) << "level " << clip.level;
+    }
+    // Both ways between the levels.
+    bool up = false, down = false;
+    for (uint32_t i = 0; i < g.nodeCount; ++i)
+        for (uint32_t e = g.edgeStart[i]; e < g.edgeStart[i + 1]; ++e) {
+            up = up || (g.nodeLevel[i] == 0 && g.nodeLevel[g.edgeTarget[e]] == 1);
+            down = down || (g.nodeLevel[i] == 1 && g.nodeLevel[g.edgeTarget[e]] == 0);
+        }
+    EXPECT_TRUE(up && down);
+}
+
+TEST(MotionGraph, ARaisedLevelThresholdAdmitsMoreTransitions) {
+    MotionGraphParams strict;
+    strict.thresholdScale = 0.5f;
+    MotionGraphParams raised = strict;
+    raised.levelThresholdScale = {1.0f, 4.0f, 1.0f, 1.0f};
+    const MotionGraph a = buildMotionGraph(syntheticMotion().q, syntheticMotion().clips, strict);
+    const MotionGraph b = buildMotionGraph(syntheticMotion().q, syntheticMotion().clips, raised);
+    auto intraTransitions = [](const MotionGraph& g, uint32_t level) {
+        uint32_t n = 0;
+        for (uint32_t i = 0; i < g.nodeCount; ++i)
+            for (uint32_t e = g.edgeStart[i]; e < g.edgeStart[i + 1]; ++e)
+                n += g.edgeIsTransition[e] && g.nodeLevel[i] == level && g.nodeLevel[g.edgeTarget[e]] == level;
+        return n;
+    };
+    EXPECT_GT(intraTransitions(b, 1), intraTransitions(a, 1));
+    EXPECT_FLOAT_EQ(b.levelThresholdScale[1], 2.0f);
+    EXPECT_FLOAT_EQ(b.levelThresholdScale[0], 0.5f);
 }
 
 TEST(MotionGraph, RejectsBadInput) {

@@ -161,3 +161,28 @@ TEST(Scene, LightSectionOverridesTheBake) {
                   .find("light.framesPerLevel must be between 2"),
               std::string::npos);
 }
+
+TEST(Scene, StemDiameterIsForImportedPlantsAndRangeChecked) {
+    auto scene = [](const std::string& plants) {
+        return std::string(R"({"name": "t", "seed": 1, "field": {"tilesX": 1, "tilesY": 1}, "plants": )") + plants +
+               "}";
+    };
+    Scene s =
+        loadScene(writeScene("stem.json", scene(R"({"source": "gltf", "gltf": "reed.gltf", "stemDiameter": 0.03})")),
+                  "ci", std::nullopt);
+    ASSERT_TRUE(s.plants.stemDiameter.has_value());
+    EXPECT_FLOAT_EQ(*s.plants.stemDiameter, 0.03f);
+    EXPECT_EQ(s.resolved["plants"]["stemDiameter"], 0.03); // in the resolved scene, so in the library's input hash
+    s = loadScene(writeScene("no-stem.json", scene(R"({"source": "gltf", "gltf": "reed.gltf"})")), "ci", std::nullopt);
+    EXPECT_FALSE(s.plants.stemDiameter.has_value());
+    std::string range =
+        errorOf(writeScene("stem-range.json", scene(R"({"source": "gltf", "gltf": "a.gltf", "stemDiameter": 1})")));
+    EXPECT_NE(range.find("stem-range.json: plants.stemDiameter must be between 0.0005 and 0.5 (got 1)"),
+              std::string::npos)
+        << range;
+    std::string type = errorOf(
+        writeScene("stem-type.json", scene(R"({"source": "gltf", "gltf": "a.gltf", "stemDiameter": "thick"})")));
+    EXPECT_NE(type.find("plants.stemDiameter must be a number"), std::string::npos) << type;
+    std::string iris = errorOf(writeScene("stem-iris.json", scene(R"({"stemDiameter": 0.01})")));
+    EXPECT_NE(iris.find("plants.stemDiameter applies only to plants.source \"gltf\""), std::string::npos) << iris;
+}

@@ -185,3 +185,68 @@ TEST(ClumpSimulation, IrisClumpInStrongWindStaysBounded) {
                 double(run.maxPenetration) * 1000.0, run.firstHalfKineticEnergy, run.secondHalfKineticEnergy,
                 run.contactCandidates);
 }
+
+// An imported plant's stem (plants/gltf_import.h) brings its own rigidity and mass per length.
+TEST(RodSystem, OwnRigidityStiffensAndIsCappedWhereTheStepWouldBeUnstable) {
+    float previous = INFINITY;
+    for (float rigidity : {0.05f, 0.2f, 5.0e5f}) {
+        Rod rod = uprightRod({0, 0, 0}, 0.7f, 8, RodKind::Stem);
+        rod.width.assign(8, 0.05f);
+        rod.bendRigidity = rigidity;
+        rod.linearDensity = 0.1f;
+        RodSystem s({rod}, RodMaterial{});
+        run(s, uniformWind({4.0f, 0.0f, 0.0f}), 3.0f);
+        const glm::vec3 t = tip(s, 0);
+        ASSERT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) << rigidity;
+        EXPECT_LT(t.x, previous) << rigidity;                          // stiffer bends less
+        EXPECT_LT(std::abs(glm::length(t) - 0.7f), 0.02f) << rigidity; // and stays whole
+        previous = t.x;
+    }
+    // 5e5 N m^2 is far beyond what a 1/600 s step carries: capped, it stands nearly upright and
+    // settles instead of blowing up.
+    EXPECT_LT(previous, 0.03f);
+    // Light stems, stiff and very stiff, in gusty wind for 10 s stay finite and bounded.
+    for (float rigidity : {1.0f, 1.0e3f, 1.0e7f}) {
+        Rod rod = uprightRod({0, 0, 0}, 0.3f, 8, RodKind::Stem);
+        rod.bendRigidity = rigidity;
+        rod.linearDensity = 0.001f;
+        rod.nodeMass.assign(8, 0.0005f);
+        RodSystem s({rod}, RodMaterial{});
+        AirCoupling air;
+        float time = 0.0f;
+        air.velocityAt = [&time](glm::vec3) { return glm::vec3(6.0f + 4.0f * std::sin(7.0f * time), 0.0f, 0.0f); };
+        for (int frame = 0; frame < 300; ++frame) {
+            s.updateContactCandidates(0.05f);
+            for (int i = 0; i < 20; ++i, time += 1.0f / 600.0f)
+                s.step(1.0f / 600.0f, air, 0.05f);
+        }
+        const glm::vec3 t = tip(s, 0);
+        ASSERT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) << rigidity;
+        EXPECT_LT(glm::length(t), 0.32f) << rigidity;
+        EXPECT_LT(s.kineticEnergy(), 1.0) << rigidity;
+    }
+}
+
+TEST(RodSystem, LinearDensitySetsTheWeight) {
+    // A level cantilever 0.5 m long sags under its own weight in proportion to it.
+    auto sag = [](float density) {
+        Rod rod;
+        rod.kind = RodKind::Stem;
+        for (uint32_t i = 0; i < 8; ++i) {
+            rod.restNodes.emplace_back(0.5f * float(i) / 7.0f, 0.6f, 0.0f);
+            rod.width.push_back(0.01f);
+        }
+        rod.thickness = 0.01f;
+        rod.bendRigidity = 0.05f;
+        rod.linearDensity = density;
+        RodSystem s({rod}, RodMaterial{});
+        run(s, uniformWind(glm::vec3(0.0f)), 4.0f);
+        return 0.6f - tip(s, 0).y;
+    };
+    const float light = sag(0.05f), heavy = sag(0.1f);
+    // Twice the weight, twice the sag (small deflections); the order of beam theory's
+    // q L^4 / 8 EI = 7.7 cm for 0.05 kg/m (the segment springs k = EI / L^3 are somewhat stiffer).
+    EXPECT_GT(light, 0.25f * 0.05f * 9.81f * std::pow(0.5f, 4.0f) / (8.0f * 0.05f));
+    EXPECT_LT(light, 0.05f * 9.81f * std::pow(0.5f, 4.0f) / (8.0f * 0.05f));
+    EXPECT_NEAR(heavy / light, 2.0f, 0.25f);
+}

@@ -88,6 +88,8 @@ meadow_corpus_scene(billion_rocks.json "${s}billion_rocks.json: field.rocksPerTi
 meadow_corpus_scene(billion_sky_frames.json "${s}billion_sky_frames.json: sky.frames must be between 1 and 4096 \\(got 1000000000\\)")
 meadow_corpus_scene(billion_rays.json "${s}billion_rays.json: light.raysPerVertex must be between 8 and 65536 \\(got 1000000000\\)")
 meadow_corpus_scene(unknown_key.json "${s}unknown_key.json: field.tileSise is not a known key")
+meadow_corpus_scene(stem_diameter_out_of_range.json "${s}stem_diameter_out_of_range.json: plants.stemDiameter must be between 0.0005 and 0.5 \\(got 2\\)")
+meadow_corpus_scene(stem_diameter_with_iris.json "${s}stem_diameter_with_iris.json: plants.stemDiameter applies only to plants.source \"gltf\"")
 meadow_corpus_scene(unknown_plant_source.json "${s}unknown_plant_source.json: plants.source must be \"iris\" or \"gltf\" \\(got \"fern\"\\)")
 meadow_corpus_scene(unknown_preset_key.json "${s}unknown_preset_key.json: presets.huge is not a known key")
 meadow_corpus_scene(camera_eye_is_target.json "${s}camera_eye_is_target.json: camera.target must differ from camera.eye")
@@ -156,6 +158,7 @@ foreach(case
     "mesh_missing.gltf|node 'plant' names mesh 4, which does not exist"
     "matrix_overflow.gltf|has a vertex position that is not finite"
     "zero_scale.gltf|wrong units\\? the plant is 0 m tall"
+    "texture_not_an_image.gltf|material 'leaf' base colour texture: image 0 is neither PNG nor JPEG"
     "buffer_file_missing.gltf|cannot parse: File not found : missing_buffer.bin"
     "buffer_bad_base64.gltf|cannot parse: Failed to decode 'uri'"
     "buffer_length_lie.gltf|cannot parse: .*\\.\\.\\.$"
@@ -181,6 +184,7 @@ foreach(case
     "no_position.gltf|has no POSITION attribute"
     "no_mesh.gltf|has no mesh with triangles in its default scene"
     "millimetres.gltf|wrong units\\? the plant is 1600 m tall"
+    "red_cube.gltf|is a closed solid enclosing 100% of its bounding box \\(1.00 m.*\\) with a mean thickness of 0.33 m \\(33% of its 1.00 m extent\\), not a plant: meadow simulates thin blades and stems on elastic rods"
     "malformed.gltf|cannot parse")
   string(REPLACE "|" ";" parts "${case}")
   list(GET parts 0 file)

@@ -157,6 +157,16 @@ def main():
     doc["nodes"][0]["scale"] = [0.0, 0.0, 0.0]
     write("zero_scale.gltf", doc)
 
+    # A base-colour texture whose image is not an image (TEXCOORD_0 read from the positions).
+    doc = copy.deepcopy(base)
+    doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 3
+    doc["meshes"][0]["primitives"][0]["material"] = 0
+    doc["accessors"].append({"bufferView": 0, "componentType": 5126, "count": 10, "type": "VEC2"})
+    doc["materials"] = [{"name": "leaf", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    doc["textures"] = [{"source": 0}]
+    doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(b"not an image at all").decode()}]
+    write("texture_not_an_image.gltf", doc)
+
     doc = copy.deepcopy(base)
     doc["buffers"][0]["uri"] = "missing_buffer.bin"
     write("buffer_file_missing.gltf", doc)
