@@ -8,6 +8,7 @@
 #include "common.glsl"
 #include "lod_select.h"
 #include "draw_instance.h"
+#include "far_splat.h"
 
 layout(local_size_x = kCullGroupSize) in;
 
@@ -21,10 +22,27 @@ layout(set = 0, binding = 6, std430) readonly buffer Clumps { GpuClump clumps[];
 layout(set = 0, binding = 7, std430) readonly buffer MotionStates { GpuMotionState states[]; };
 // Per visible instance, what its vertices need (draw_instance.h), indexed like the instances.
 layout(set = 0, binding = 8, std430) writeonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
+// The far field (far_splat.h): per far instance its entry (the fade bit when it is the second
+// draw of a crossfade from LOD 4) and the samples it draws; the splat pass's dispatch.
+layout(set = 0, binding = 9, std430) writeonly buffer FarList { uvec2 farList[]; };
+layout(set = 0, binding = 10, std430) buffer FarDispatch { GpuFarDispatch farDispatch; };
 
 void append(uint bucket, uint entry) {
     uint slot = atomicAdd(draws[bucket].instanceCount, 1u);
     visible[draws[bucket].firstInstance + slot] = entry;
+}
+
+// A far instance: as many of its clump's samples as its projected surface wants; one more
+// workgroup for the splat pass, up to kFarMaxGroups.
+void appendFar(uint entry, GpuClump clump, float scale, float pixelsPerMetre) {
+    float area = uintBitsToFloat(clump.far.z) * scale * scale;
+    uint count = farSampleCount(area, pixelsPerMetre, frame.lodScreen.y, clump.far.y);
+    uint slot = atomicAdd(farDispatch.count, 1u);
+    farList[slot] = uvec2(entry, count);
+    if (slot < kFarMaxGroups)
+        atomicAdd(farDispatch.groupsX, 1u);
+    atomicAdd(stats.farInstances, 1u);
+    atomicAdd(stats.farSamples, count);
 }
 
 // Sphere against the six inward-facing planes; `precise` keeps the arithmetic identical to the
@@ -71,13 +89,18 @@ void main() {
         p.band = frame.lodBand.x;
         p.jitter = frame.lodBand.y;
         p.hysteresis = frame.lodBand.z;
-        p.pad = 0.0;
+        p.farRadius = frame.lodBand.w;
         GpuLodChoice c = lodSelect(p, screenRadius, lodInstanceRandom(index), lodX[index]);
         lodX[index] = c.x;
         drawInstances[index] = makeDrawInstance(inst, clumps[inst.mesh], states[index], c.x, true);
+        // Below the far radius the far field replaces LOD 4 (only when the frame has one).
+        bool far = c.lod == kLodFar, farFade = c.fadeLod == kLodFar && !far;
         uint lod = min(c.lod, lodCount - 1u), fadeLod = min(c.fadeLod, lodCount - 1u);
-        append(first + lod, index);
-        if (fadeLod != lod)
+        if (!far)
+            append(first + lod, index);
+        if (fadeLod != lod && !farFade)
             append(first + fadeLod, index | kLodFadeEntryBit);
+        if (far || farFade)
+            appendFar(farFade ? index | kLodFadeEntryBit : index, clumps[inst.mesh], scale, frame.lodScreen.x / dist);
     }
 }

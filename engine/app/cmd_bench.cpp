@@ -33,14 +33,16 @@ options:
 
 int runBenchWith(const Args& argv, const BenchLibrarySource& source) {
     const std::string help =
-        std::string(source.usage) + "\n" + source.note + kBenchOptions + kSceneAndEngineOptionsHelp;
+        std::string(source.usage) + "\n" + source.note + kBenchOptions + kFieldOptionsHelp + kSceneAndEngineOptionsHelp;
     if (printHelpIfAsked(argv, help.c_str()))
         return 0;
     CommandSpec spec{
         "bench", {"SCENE"}, {"--json", "--clumps", "--frames", "--size", "--driver", "--camera", "--camera-path"}, {}};
     addSceneOptions(spec);
     addEngineOptions(spec);
+    addFieldOptions(spec);
     ParsedArgs args = parseArgs(spec, argv);
+    const FieldOptions fieldOptions = fieldOptionsFromArgs(args);
 
     // Everything about the command line and the output is checked before any work starts.
     if (!args.has("--json"))
@@ -66,8 +68,9 @@ int runBenchWith(const Args& argv, const BenchLibrarySource& source) {
     // The field with its rocks; --clumps tiles the clumps alone (the rocks are left out).
     const std::vector<gpu::GpuInstance> field =
         clumpCount ? tileField(library.field.clumpInstances, *clumpCount) : fieldInstances(library);
-    const std::vector<FieldClump> clumps = fieldClumps(library);
-    const FieldScenery scenery = fieldScenery(library);
+    std::vector<FieldClump> clumps = fieldClumps(library);
+    FieldScenery scenery = fieldScenery(library);
+    applyFieldOptions(fieldOptions, clumps, scenery);
 
     Context ctx;
     createContext(ctx, contextOptionsFromArgs(args));

@@ -43,6 +43,14 @@ nlohmann::json graphAdaptations(const MotionGraph& g) {
     return said;
 }
 
+// The far field's surface samples of a clump or rock (library/far_samples.h): how many, the
+// area they cover (m^2, one side) and their bytes in the FARS section.
+nlohmann::json farSamplesJson(const FarSamples& far) {
+    return {{"samples", far.samples.size()},
+            {"area", far.area},
+            {"bytes", 8 + far.samples.size() * size_t(kFarSampleBytes)}};
+}
+
 } // namespace
 
 int runPrecompute(const Args& argv) {
@@ -182,8 +190,13 @@ int runInspect(const Args& argv) {
                             {"bakeNoise", light.groundNoise},
                             {"heldOutIrradianceRelError", light.groundHeldOutError},
                             {"irradianceNoise", light.groundIrradianceNoise}}}};
+        clump["far"] = farSamplesJson(c.far);
         j["clumps"].push_back(clump);
     }
+    // Rocks carry far-field samples too; they are listed only for those.
+    j["rocks"] = nlohmann::json::array();
+    for (const LibraryRock& rock : lib.field.rocks)
+        j["rocks"].push_back({{"name", rock.mesh.name}, {"far", farSamplesJson(rock.far)}});
     uint32_t plants = 0;
     for (const gpu::GpuInstance& inst : lib.field.clumpInstances)
         plants += lib.clumps[inst.mesh].plants;

@@ -38,7 +38,7 @@ options:
 } // namespace
 
 int runRender(const Args& argv) {
-    if (printHelpIfAsked(argv, (std::string(kRenderHelp) + kSceneAndEngineOptionsHelp).c_str()))
+    if (printHelpIfAsked(argv, (std::string(kRenderHelp) + kFieldOptionsHelp + kSceneAndEngineOptionsHelp).c_str()))
         return 0;
     CommandSpec spec{"render",
                      {"SCENE"},
@@ -47,7 +47,9 @@ int runRender(const Args& argv) {
     spec.switchOptions.insert("--debug-lod");
     addSceneOptions(spec);
     addEngineOptions(spec);
+    addFieldOptions(spec);
     ParsedArgs args = parseArgs(spec, argv);
+    const FieldOptions fieldOptions = fieldOptionsFromArgs(args);
 
     // Everything about the output is checked before any work starts.
     if (!args.has("--out"))
@@ -72,8 +74,10 @@ int runRender(const Args& argv) {
     createContext(ctx, contextOptionsFromArgs(args));
     int status = 0;
     {
-        FieldRenderer renderer = createFieldRenderer(ctx, fieldClumps(library), fieldInstances(library), library.atlas,
-                                                     fieldScenery(library));
+        FieldScenery scenery = fieldScenery(library);
+        std::vector<FieldClump> clumps = fieldClumps(library);
+        applyFieldOptions(fieldOptions, clumps, scenery);
+        FieldRenderer renderer = createFieldRenderer(ctx, clumps, fieldInstances(library), library.atlas, scenery);
         Offscreen offscreen = createOffscreen(ctx, {width, height});
         FrameState state;
         state.camera = path ? cameraOnPath(camera, *path, 0.0) : camera;
@@ -97,9 +101,11 @@ int runRender(const Args& argv) {
                 writeRgbaHalf(path, width, height, readHdrPixels(ctx, offscreen.targets));
         }
         FieldStats stats = readFieldStats(renderer);
-        std::fprintf(stderr, "meadow: rendered %u frame%s of %s at %ux%u on %s: %u of %u instances visible\n", frames,
-                     frames == 1 ? "" : "s", scene.name.c_str(), width, height, ctx.deviceName().c_str(),
-                     stats.visibleInstances, stats.testedInstances);
+        std::fprintf(stderr,
+                     "meadow: rendered %u frame%s of %s at %ux%u on %s: %u of %u instances visible, %u in the far "
+                     "field (%u splats)\n",
+                     frames, frames == 1 ? "" : "s", scene.name.c_str(), width, height, ctx.deviceName().c_str(),
+                     stats.visibleInstances, stats.testedInstances, stats.farInstances, stats.farSamples);
         destroyOffscreen(ctx, offscreen);
         destroyFieldRenderer(ctx, renderer);
     }

@@ -182,6 +182,7 @@ ParsedArgs parseViewArgs(const Args& argv) {
                      {"--no-vsync", "--fullscreen", "--walk", "--no-hud", "--play"}};
     addSceneOptions(spec);
     addEngineOptions(spec);
+    addFieldOptions(spec);
     return parseArgs(spec, argv);
 }
 
@@ -292,8 +293,9 @@ struct Walkthrough {
 };
 
 // Creates the renderer, the window, the HUD and the GPU timer, and plays the warm-up motion.
-void openWalkthrough(Walkthrough& w, const Library& library, const FieldScenery& scenery, bool play) {
-    w.renderer = createFieldRenderer(w.ctx, fieldClumps(library), fieldInstances(library), library.atlas, scenery);
+void openWalkthrough(Walkthrough& w, const Library& library, const std::vector<FieldClump>& clumps,
+                     const FieldScenery& scenery, bool play) {
+    w.renderer = createFieldRenderer(w.ctx, clumps, fieldInstances(library), library.atlas, scenery);
     w.input.ignoreDevices = w.opt.script.has_value();
     if (w.opt.script)
         w.player.emplace(std::move(*w.opt.script));
@@ -649,13 +651,14 @@ int exitStatus(int validationStatus, int failures) {
 } // namespace
 
 int runView(const Args& argv) {
-    const std::string help = std::string(kViewUsage) + keyHelpText() + kViewOptions;
+    const std::string help = std::string(kViewUsage) + keyHelpText() + kViewOptions + kFieldOptionsHelp;
     if (printHelpIfAsked(argv, help.c_str()))
         return 0;
     ParsedArgs args = parseViewArgs(argv);
 
     // Everything the command line names is checked before a window opens.
     ViewOptions opt = viewOptionsFromArgs(args);
+    const FieldOptions fieldOptions = fieldOptionsFromArgs(args);
     Scene scene = sceneFromArgs(args);
     opt.recordFile = recordFileFromArgs(args, opt.outDir, scene);
     ViewControls controls = viewControlsFromArgs(args, scene);
@@ -665,6 +668,8 @@ int runView(const Args& argv) {
     initWindowSystem(); // no display: say so before the library loads
     Library library = ensureLibrary(scene);
     FieldScenery scenery = fieldScenery(library);
+    std::vector<FieldClump> clumps = fieldClumps(library);
+    applyFieldOptions(fieldOptions, clumps, scenery);
     const GroundHeight ground(scenery.terrain);
     FlyCamera fly(startPose);
     fly.walk = args.has("--walk");
@@ -682,7 +687,7 @@ int runView(const Args& argv) {
                       .ground = ground,
                       .controls = controls,
                       .fly = fly};
-        openWalkthrough(w, library, scenery, args.has("--play"));
+        openWalkthrough(w, library, clumps, scenery, args.has("--play"));
         runFrames(w);
         finishWalkthrough(w);
         closeWalkthrough(w);

@@ -14,6 +14,39 @@ const char* const kSceneAndEngineOptionsHelp = R"(  --preset ci|full      scene 
   --verbose             say which device is used
 )";
 
+const char* const kFieldOptionsHelp =
+    R"(  --far-radius PX       the far field: below this projected radius (px) a clump is drawn as
+                        surface-sample splats instead of its LOD 4 mesh, with the same
+                        crossfade as the LODs (default 0: off)
+  --lod0                every clump at full detail (LOD 0), no far field: the reference the
+                        levels of detail and the far field approximate
+)";
+
+void addFieldOptions(CommandSpec& spec) {
+    spec.valueOptions.insert("--far-radius");
+    spec.switchOptions.insert("--lod0");
+}
+
+FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
+    FieldOptions options;
+    options.farRadius = args.f32("--far-radius", 0.0f, 0.0f, 1000.0f);
+    options.lod0 = args.has("--lod0");
+    if (options.lod0 && options.farRadius > 0.0f)
+        throw Error("meadow " + args.command +
+                    ": --lod0 draws every clump at full detail, without a far field: "
+                    "leave out --far-radius");
+    return options;
+}
+
+void applyFieldOptions(const FieldOptions& options, std::vector<FieldClump>& clumps, FieldScenery& scenery) {
+    scenery.lod.farRadius = options.farRadius;
+    if (options.lod0) {
+        scenery.lodCount = 1;
+        for (FieldClump& clump : clumps)
+            clump.lods.resize(1);
+    }
+}
+
 void addEngineOptions(CommandSpec& spec) {
     spec.valueOptions.insert("--device");
     spec.switchOptions.insert("--validation");

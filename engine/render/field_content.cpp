@@ -66,6 +66,8 @@ std::vector<FieldClump> fieldClumps(const Library& library) {
             clump.groundResolution = source.light.groundResolution;
             clump.groundSize = source.light.groundSize;
         }
+        clump.far = source.far.samples;
+        clump.farArea = source.far.area;
         clumps.push_back(std::move(clump));
     }
     // Rocks: static, lit by their baked transfer (no gradient), turned to any yaw (8 light bins),
@@ -91,6 +93,9 @@ std::vector<FieldClump> fieldClumps(const Library& library) {
             clump.groundResolution = rock.groundResolution;
             clump.groundSize = rock.groundSize;
         }
+        clump.far = rock.far.samples;
+        clump.farArea = rock.far.area;
+        clump.farClosed = true;
         clumps.push_back(std::move(clump));
     }
     return clumps;

@@ -1,10 +1,12 @@
 #include "render/field_packing.h"
 
 #include "core/error.h"
+#include "far_splat.h"
 #include "library/sh.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace meadow {
 
@@ -73,11 +75,14 @@ void packGraph(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
 }
 
 // Each LOD's vertices (with their motion rows) and triangles, and its draw: buckets clump-major.
-void packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount, uint32_t basisBase, FieldPacking& p) {
+// Returns the first GpuLodVertex of the last LOD.
+uint32_t packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount, uint32_t basisBase, FieldPacking& p) {
     const MotionBasis& motion = clump.motion;
     const bool moving = motion.frames > 0;
+    uint32_t lastLodBase = 0;
     for (uint32_t l = 0; l < lodCount; ++l) {
         const FieldLod& lod = clump.lods[l];
+        lastLodBase = uint32_t(p.lodVertices.size());
         gpu::GpuDrawIndexedCommand& draw = p.draws[clumpIndex * lodCount + l];
         draw.indexCount = uint32_t(lod.indices.size());
         draw.firstIndex = uint32_t(p.indices.size());
@@ -95,6 +100,41 @@ void packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount, uin
         p.indices.insert(p.indices.end(), lod.indices.begin(), lod.indices.end());
         p.meshTriangles.push_back(uint32_t(lod.indices.size() / 3));
     }
+    return lastLodBase;
+}
+
+float srgbByteToLinear(uint32_t byte) {
+    const float c = float(byte) / 255.0f;
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// The far field's samples into farSamples, each pointing at the GpuLodVertex of the last LOD it
+// follows (its motion rows at that LOD's modes) and at the clump vertex whose light it takes:
+// GpuClump::far.
+void packFar(const FieldClump& clump, size_t clumpIndex, uint32_t lastLodBase, FieldPacking& p, gpu::GpuClump& g) {
+    const std::vector<uint32_t>& lastLod = clump.lods.back().vertices;
+    std::vector<uint32_t> slot(clump.mesh.vertices.size(), UINT32_MAX);
+    for (uint32_t k = 0; k < uint32_t(lastLod.size()); ++k)
+        slot[lastLod[k]] = k;
+    const uint32_t first = uint32_t(p.farSamples.size());
+    for (const FarSample& s : clump.far) {
+        if (s.vertex >= slot.size() || slot[s.vertex] == UINT32_MAX)
+            throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample follows vertex " +
+                        std::to_string(s.vertex) + ", which its last LOD does not keep");
+        const float r = srgbByteToLinear(s.albedo & 0xffu), gr = srgbByteToLinear((s.albedo >> 8) & 0xffu),
+                    b = srgbByteToLinear((s.albedo >> 16) & 0xffu);
+        if (s.lightVertex >= clump.mesh.vertices.size())
+            throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample is lit by vertex " +
+                        std::to_string(s.lightVertex) + " of " + std::to_string(clump.mesh.vertices.size()));
+        p.farSamples.push_back({glm::vec4(s.position, 0.0f), gpu::uvec4(s.normal, gpu::packRgb9e5(r, gr, b),
+                                                                        s.lightVertex, lastLodBase + slot[s.vertex])});
+    }
+    if (!clump.far.empty() && !(clump.farArea > 0.0f && std::isfinite(clump.farArea)))
+        throw Error("field clump " + std::to_string(clumpIndex) + ": its far-field samples cover " +
+                    std::to_string(clump.farArea) + " m^2");
+    uint32_t areaBits;
+    std::memcpy(&areaBits, &clump.farArea, sizeof areaBits);
+    g.far = gpu::uvec4(first, uint32_t(clump.far.size()), areaBits, clump.farClosed ? 1u : 0u);
 }
 
 // The clump's transfer (and its ground grid's) into transfer, and where the light pass writes
@@ -212,8 +252,9 @@ FieldPacking packField(std::span<const FieldClump> clumps, std::span<const gpu::
         uint32_t basisBase = 0;
         packMotion(clump, p, g, basisBase);
         packGraph(clump, p, g);
-        packLods(clump, ci, lodCount, basisBase, p);
+        const uint32_t lastLodBase = packLods(clump, ci, lodCount, basisBase, p);
         packLight(clump, p, g);
+        packFar(clump, ci, lastLodBase, p, g);
         p.clumps.push_back(g);
     }
     if (p.lightVec4s > (uint64_t(1) << 31) / 16 || p.motionData.size() > (size_t(1) << 31))

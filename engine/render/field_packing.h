@@ -30,11 +30,13 @@ struct FieldPacking {
     std::vector<uint32_t> drawCapacity;            // per draw bucket: the instances its visible range holds
     uint32_t visibleCount = 0;                     // the visible list's length: every bucket's range
     std::vector<gpu::GpuMotionState> states;       // per instance: where its walk starts
+    std::vector<gpu::GpuFarSample> farSamples;     // per clump its far-field samples (GpuClump::far)
 };
 
 // Throws meadow::Error naming "field clump <index>" for a clump the renderer cannot draw: no
 // vertices, the wrong number of LODs, indices out of range, motion without a graph, transfer or
-// a ground grid of the wrong size, an empty yaw range.
+// a ground grid of the wrong size, an empty yaw range, far-field samples that follow a vertex the
+// last LOD does not keep or cover no surface.
 void checkFieldClump(const FieldClump& clump, size_t index, uint32_t lodCount);
 
 // Packs the clumps (lodCount LODs each) and, for the instances, their first motion states and

@@ -1,5 +1,6 @@
 #include "render/field_renderer.h"
 
+#include "far_splat.h"
 #include "render/draw_ranges.h"
 #include "render/field_packing.h"
 
@@ -79,6 +80,28 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
         throw Error("the field has " + std::to_string(clumps.size()) + " clumps; the renderer draws at most 65535");
     for (size_t c = 0; c < clumps.size(); ++c)
         checkFieldClump(clumps[c], c, scenery.lodCount);
+    if (scenery.lod.farRadius > 0.0f) {
+        if (scenery.lodCount != gpu::kLodSelectCount)
+            throw Error("the far field follows LOD 4: it needs all five levels of detail");
+        // The far field's band must lie below LOD 4's, as each LOD's below the one before.
+        const gpu::GpuLodParams& lod = scenery.lod;
+        const float limit = lod.switchRadius[3] * (1.0f - lod.band) / (1.0f + lod.band);
+        if (!(lod.farRadius < limit)) {
+            char message[200];
+            std::snprintf(message, sizeof message,
+                          "the far radius of %g px must lie below the switch to LOD 4 (%.3g px, less its crossfade "
+                          "band: below %.3g px)",
+                          double(lod.farRadius), double(lod.switchRadius[3]), double(limit));
+            throw Error(message);
+        }
+        if (!(scenery.farDensity > 0.0f && scenery.farDensity <= 64.0f))
+            throw Error("the far field's density of " + std::to_string(scenery.farDensity) +
+                        " samples per pixel is outside (0, 64]");
+        for (size_t c = 0; c < clumps.size(); ++c)
+            if (clumps[c].far.empty() || clumps[c].far.size() >= (1u << 24))
+                throw Error("field clump " + std::to_string(c) + " has " + std::to_string(clumps[c].far.size()) +
+                            " far-field samples; the far field needs 1 to 16777215 per clump (rebuild the library)");
+    }
 
     FieldRenderer r;
     try {
@@ -113,6 +136,8 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     groundMapDesc.pushConstantSize = sizeof(glm::vec4);
     groundMapDesc.multiplyBlend = true;
     r.groundMap = createGraphicsPipeline(ctx, groundMapDesc);
+    r.farSplat = createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4));
+    r.farResolve = createComputePipeline(ctx, "far_resolve.comp");
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);
     r.windAzimuth = std::atan2(wind.x, wind.y); // light/sh.h: from +z towards +x
@@ -142,7 +167,8 @@ void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size
         skyFrameFloats(day) * day.frames.size() * sizeof(float) +
         2 * p.draws.size() * sizeof(gpu::GpuDrawIndexedCommand) + uint64_t(atlas.width) * atlas.height * 4 +
         uint64_t(mapSize.width) * mapSize.height * 8 + scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex) +
-        scenery.terrain.indices.size() * sizeof(uint32_t);
+        scenery.terrain.indices.size() * sizeof(uint32_t) + p.farSamples.size() * sizeof(gpu::GpuFarSample) +
+        uint64_t(instanceCount) * 8 + sizeof(gpu::GpuFarDispatch);
     checkFieldMemory(ctx, neededBytes,
                      "the field (" + std::to_string(instanceCount) + " instances of " + std::to_string(clumpCount) +
                          " meshes)");
@@ -185,6 +211,9 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
         ctx, drawBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
     uploadToBuffer(ctx, r.drawCommandTemplate, p.draws.data(), drawBytes);
     deviceBuffer(r.visibleList, nullptr, size_t(p.visibleCount) * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.farSamples, p.farSamples.data(), p.farSamples.size() * sizeof(gpu::GpuFarSample));
+    deviceBuffer(r.farList, nullptr, instances.size() * 2 * sizeof(uint32_t));
+    deviceBuffer(r.farDispatch, nullptr, sizeof(gpu::GpuFarDispatch), VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     deviceBuffer(r.stats, nullptr, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     r.statsReadback =
         createBuffer(ctx, sizeof(gpu::GpuCullStats) + drawBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
@@ -192,6 +221,7 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     writeMapped(ctx, r.statsReadback, zeros.data(), zeros.size());
     r.atlas = createTexture(ctx, {atlas.width, atlas.height}, VK_FORMAT_R8G8B8A8_SRGB, atlas.rgba.data());
     r.sampler = createLinearSampler(ctx);
+    r.pointSampler = createNearestSampler(ctx);
 
     deviceBuffer(r.terrainVertices, scenery.terrain.vertices.data(),
                  scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex));
@@ -210,6 +240,8 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
     r.lodCount = scenery.lodCount;
     r.meshCount = r.clumpCount * r.lodCount;
     r.lodParams = scenery.lod;
+    r.farDensity = scenery.farDensity;
+    r.farField = scenery.lod.farRadius > 0.0f;
     r.skyDay = scenery.sky;
     createPipelines(ctx, r, scenery);
 
@@ -236,12 +268,14 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
 } // namespace
 
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
-    for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance, &r.groundMap})
+    for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance, &r.groundMap,
+                        &r.farSplat, &r.farResolve})
         destroyPipeline(ctx, *p);
     for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,        &r.drawInstances,
                       &r.clumps,        &r.lodVertices, &r.indices,       &r.motionData,      &r.motionGraph,
                       &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,    &r.drawCommandTemplate,
-                      &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices, &r.terrainIndices})
+                      &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices, &r.terrainIndices,
+                      &r.farSamples,    &r.farList,     &r.farDispatch})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     destroyImage(ctx, r.groundLight);
@@ -249,6 +283,8 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
         destroyCpuDriver(ctx, *r.cpuDriver);
     if (r.sampler)
         vkDestroySampler(ctx.device, r.sampler, nullptr);
+    if (r.pointSampler)
+        vkDestroySampler(ctx.device, r.pointSampler, nullptr);
     r = FieldRenderer{};
 }
 
@@ -260,7 +296,13 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
     f.counts.w = r.lodCount;
     f.lodSwitchRadius = glm::vec4(r.lodParams.switchRadius[0], r.lodParams.switchRadius[1], r.lodParams.switchRadius[2],
                                   r.lodParams.switchRadius[3]);
-    f.lodBand = glm::vec4(r.lodParams.band, r.lodParams.jitter, r.lodParams.hysteresis, 0.0f);
+    // The CPU-driven path culls on the host, without a far field: it draws far clumps at LOD 4.
+    const bool far = r.farField && !r.cpuDriver;
+    f.lodBand =
+        glm::vec4(r.lodParams.band, r.lodParams.jitter, r.lodParams.hysteresis, far ? r.lodParams.farRadius : 0.0f);
+    f.lodScreen.y = r.farDensity;
+    f.lodScreen.z = float(state.width);
+    f.lodScreen.w = float(state.height);
 
     // Wind: waves and gusts travel along the direction the clumps were simulated in.
     const WindState& w = state.wind;
@@ -352,6 +394,12 @@ void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
 
 namespace {
 
+// The far field runs on the GPU-driven path only: the CPU-driven one culls on the host and draws
+// far clumps at LOD 4 (frameUniforms gives its frames no far radius).
+bool farRuns(const FieldRenderer& r) {
+    return r.farField && !r.cpuDriver;
+}
+
 void markPass(GpuTimer* timer, VkCommandBuffer cmd, const char* pass) {
     if (timer)
         markTimestamp(*timer, cmd, pass);
@@ -372,6 +420,10 @@ void recordReset(FieldRenderer& r, VkCommandBuffer cmd) {
         VkBufferCopy drawsRegion{0, 0, r.drawCommands.size};
         vkCmdCopyBuffer(cmd, r.drawCommandTemplate.buffer, r.drawCommands.buffer, 1, &drawsRegion);
         vkCmdFillBuffer(cmd, r.stats.buffer, 0, sizeof(gpu::GpuCullStats), 0);
+        // The far list empty: no workgroups (x and the count 0), y and z 1.
+        vkCmdFillBuffer(cmd, r.farDispatch.buffer, 0, sizeof(uint32_t), 0);
+        vkCmdFillBuffer(cmd, r.farDispatch.buffer, sizeof(uint32_t), 2 * sizeof(uint32_t), 1);
+        vkCmdFillBuffer(cmd, r.farDispatch.buffer, 3 * sizeof(uint32_t), sizeof(uint32_t), 0);
     }
 }
 
@@ -393,7 +445,7 @@ void recordCullPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
         return;
     bindPipeline(ctx, cmd, r.cull,
                  {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState, r.clumps,
-                  r.motionStates, r.drawInstances});
+                  r.motionStates, r.drawInstances, r.farList, r.farDispatch});
     dispatchCovering(cmd, r.cull, r.instanceCount);
 }
 
@@ -408,7 +460,7 @@ void recordLightPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
         }
     }
     barrier(cmd, access::kComputeReadWrite,
-            access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead);
+            access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead | access::kComputeRead);
 }
 
 // The ground light map, with the light: cleared to open ground, then every instance's grid
@@ -454,8 +506,8 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
     // not needed again, so both start from UNDEFINED.
     imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeRead | access::kTransferRead,
                  VK_IMAGE_LAYOUT_UNDEFINED, access::kColorAttachmentWrite, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kDepthAttachment, VK_IMAGE_LAYOUT_UNDEFINED,
-                 access::kDepthAttachment, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
+    imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kDepthAttachment | access::kComputeSampledRead,
+                 VK_IMAGE_LAYOUT_UNDEFINED, access::kDepthAttachment, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
 
     VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     color.imageView = t.hdr.view;
@@ -466,7 +518,7 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
     depth.imageView = t.depth.view;
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.storeOp = farRuns(r) ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE; // the splats test it
     depth.clearValue.depthStencil = {0.0f, 0}; // reversed Z: 0 is infinitely far
     VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
     rendering.renderArea = {{0, 0}, t.extent};
@@ -501,10 +553,39 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
     vkCmdEndRendering(cmd);
 }
 
-// HDR -> LDR: the draw's image, read in GENERAL layout by a compute pass that writes the LDR one.
-void recordTonemapPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
+// The far field (far_splat.h): the visibility buffer emptied, every far instance's samples splatted
+// against the meshes' depth, the winners written into the HDR image (left in GENERAL layout).
+void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
+    imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kDepthAttachment,
+                 VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, access::kComputeSampledRead,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
-                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeReadWrite, VK_IMAGE_LAYOUT_GENERAL);
+    // The previous frame's resolve read the visibility buffer.
+    barrier(cmd, access::kComputeRead, access::kTransferWrite);
+    vkCmdFillBuffer(cmd, t.farVisibility.buffer, 0, VK_WHOLE_SIZE, gpu::kFarEmpty);
+    barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
+    bindPipeline(ctx, cmd, r.farSplat,
+                 {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, r.farSamples, r.lodVertices,
+                  r.motionData, r.vertexLight,
+                  Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler), t.farVisibility});
+    pushConstants(ctx, cmd, r.farSplat, &r.mirrorNormal, sizeof(glm::vec4));
+    vkCmdDispatchIndirect(cmd, r.farDispatch.buffer, 0);
+    barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite);
+    bindPipeline(ctx, cmd, r.farResolve,
+                 {r.frameUniforms, t.farVisibility, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL)});
+    dispatchCovering(cmd, r.farResolve, t.extent.width, t.extent.height);
+}
+
+// HDR -> LDR: the draw's image (and the far field's), read in GENERAL layout by a compute pass
+// that writes the LDR one.
+void recordTonemapPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
+    if (farRuns(r))
+        imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite, VK_IMAGE_LAYOUT_GENERAL,
+                     access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
+    else
+        imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
     imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite | access::kTransferRead,
                  VK_IMAGE_LAYOUT_UNDEFINED, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL);
     bindPipeline(
@@ -539,6 +620,10 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     markPass(timer, cmd, "light");
     recordDrawPass(ctx, r, cmd, t);
     markPass(timer, cmd, "draw");
+    if (farRuns(r)) {
+        recordFarPass(ctx, r, cmd, t);
+        markPass(timer, cmd, "far");
+    }
     recordTonemapPass(ctx, r, cmd, t);
     markPass(timer, cmd, "tonemap");
     recordStatsReadback(r, cmd);
@@ -550,6 +635,8 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     FieldStats out;
     out.visibleInstances = s.visibleInstances;
     out.testedInstances = s.testedInstances;
+    out.farInstances = s.farInstances;
+    out.farSamples = s.farSamples;
     std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
     std::memcpy(draws.data(), static_cast<const char*>(r.statsReadback.mapped()) + sizeof(s),
                 draws.size() * sizeof(gpu::GpuDrawIndexedCommand));

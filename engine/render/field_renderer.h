@@ -5,13 +5,16 @@
 //   reset counters -> animate.comp (motion-graph steps at the wind level of each instance)
 //   -> cull.comp (frustum, LOD, compaction into per-(clump, LOD) draws)
 //   -> light.comp (only when the sky changed: every clump vertex's transfer onto the sky's SH)
-//   -> sky backdrop, terrain, one multi-draw-indirect of the clumps -> tonemap.comp.
+//   -> sky backdrop, terrain, one multi-draw-indirect of the clumps
+//   -> far_splat.comp, far_resolve.comp (with a far field: far instances as surface samples)
+//   -> tonemap.comp.
 //
-// GPU timestamps bracket "animate", "cull", "light", "draw" and "tonemap".
+// GPU timestamps bracket "animate", "cull", "light", "draw", "far" (with a far field) and "tonemap".
 #pragma once
 
 #include "draw_instance.h"
 #include "gpu_types.h"
+#include "library/far_samples.h"
 #include "library/mesh.h"
 #include "library/motion_basis.h"
 #include "library/motion_graph.h"
@@ -58,6 +61,12 @@ struct FieldClump {
     std::vector<float> groundTransfer;
     uint32_t groundResolution = 0;
     float groundSize = 0.0f;
+    // The far field (far_splat.h): surface samples, shuffled so any prefix is an unbiased subset,
+    // each following a vertex of the last LOD; `farArea` the surface they cover (m^2). Empty: the
+    // clump stays a LOD 4 mesh however small it gets.
+    std::vector<FarSample> far;
+    float farArea = 0.0f;
+    bool farClosed = false; // a closed surface (rocks): samples facing away from the camera are hidden
 };
 
 // A static clump of one mesh: every LOD the whole mesh, no motion, unshadowed light.
@@ -70,8 +79,9 @@ struct FieldScenery {
     // Levels of detail: every clump has lodCount; the cull pass picks each instance's with
     // lodSelect; with 1, every instance draws its clump's one mesh.
     uint32_t lodCount = 1;
-    gpu::GpuLodParams lod{};
-    sky::SkyDay sky; // SH order 3; at least one frame
+    gpu::GpuLodParams lod{}; // lod.farRadius > 0: the far field takes over below it (every clump needs samples)
+    float farDensity = 2.0f; // far-field samples per pixel of projected surface (far_splat.h)
+    sky::SkyDay sky;         // SH order 3; at least one frame
 };
 
 // The wind at run time, in wind levels of the motion graph (0 calm .. levels - 1): waves that
@@ -108,6 +118,8 @@ struct FieldRenderer {
     Pipeline ground;
     Pipeline instance;
     Pipeline groundMap;
+    Pipeline farSplat;
+    Pipeline farResolve;
 
     Buffer frameUniforms; // host-written each frame: the only per-frame upload
     Buffer instances;
@@ -125,11 +137,15 @@ struct FieldRenderer {
     Buffer drawCommands;        // one per (clump, LOD)
     Buffer drawCommandTemplate; // the same with instanceCount 0: copied over them every frame
     Buffer visibleList;
+    Buffer farSamples;  // gpu::GpuFarSample, per clump its shuffled samples
+    Buffer farList;     // per far instance this frame: (visible-list entry, samples to draw)
+    Buffer farDispatch; // gpu::GpuFarDispatch: the splat pass's indirect dispatch, written by cull
     Buffer stats;
     Buffer statsReadback;
 
     Image atlas;
     VkSampler sampler = VK_NULL_HANDLE;
+    VkSampler pointSampler = VK_NULL_HANDLE; // the depth, read by the splat pass
 
     // The field's ground light map (ground_map.vert): the share of open-ground light reaching each
     // point of the ground, multiplied over every instance's grid; redrawn with the light pass.
@@ -144,6 +160,8 @@ struct FieldRenderer {
     uint32_t meshCount = 0; // draw buckets: clumps x lodCount, clump-major
     uint32_t lodCount = 1;
     gpu::GpuLodParams lodParams{};
+    float farDensity = 2.0f;
+    bool farField = false;               // lodParams.farRadius > 0: the splat and resolve passes run
     std::vector<uint32_t> meshTriangles; // per draw bucket
     std::vector<uint32_t> drawCapacity;  // per draw bucket: the instances its visible range holds
     uint64_t lodVertexCount = 0;
@@ -171,6 +189,8 @@ struct FieldRenderer {
 struct FieldStats {
     uint32_t visibleInstances = 0;
     uint32_t testedInstances = 0;
+    uint32_t farInstances = 0;            // drawn as the far field (a crossfading one counts here and in a LOD)
+    uint32_t farSamples = 0;              // splats they drew
     uint64_t trianglesDrawn = 0;          // instances + terrain + sky
     std::vector<uint32_t> visiblePerMesh; // per draw bucket; a crossfading instance counts in two
 };

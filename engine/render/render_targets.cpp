@@ -44,7 +44,9 @@ RenderTargets createRenderTargets(Context& ctx, VkExtent2D extent) {
                   VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT |
                       VK_FORMAT_FEATURE_TRANSFER_SRC_BIT,
                   "HDR colour (R16G16B16A16_SFLOAT)");
-    requireFormat(ctx, kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT, "depth (D32_SFLOAT)");
+    requireFormat(ctx, kDepthFormat,
+                  VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT,
+                  "depth (D32_SFLOAT)");
     requireFormat(ctx, kLdrFormat,
                   VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT |
                       VK_FORMAT_FEATURE_BLIT_SRC_BIT,
@@ -54,8 +56,12 @@ RenderTargets createRenderTargets(Context& ctx, VkExtent2D extent) {
     t.hdr = createImage2D(ctx, extent, kHdrFormat,
                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
                               VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-    t.depth = createImage2D(ctx, extent, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
+    t.depth = createImage2D(ctx, extent, kDepthFormat,
+                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     t.ldr = createImage2D(ctx, extent, kLdrFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    t.farVisibility =
+        createBuffer(ctx, VkDeviceSize(extent.width) * extent.height * sizeof(uint64_t),
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
     return t;
 }
 
@@ -63,6 +69,7 @@ void destroyRenderTargets(Context& ctx, RenderTargets& t) {
     destroyImage(ctx, t.hdr);
     destroyImage(ctx, t.depth);
     destroyImage(ctx, t.ldr);
+    destroyBuffer(ctx, t.farVisibility);
     t = RenderTargets{};
 }
 

@@ -1,5 +1,6 @@
 // The images one frame renders into: linear HDR colour, reversed-Z depth, and the tonemapped
-// 8-bit image that is written to PNG or blitted to a window.
+// 8-bit image that is written to PNG or blitted to a window; and the far field's visibility
+// buffer.
 #pragma once
 
 #include "vk/memory.h"
@@ -16,8 +17,10 @@ inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM; // values alrea
 struct RenderTargets {
     VkExtent2D extent{};
     Image hdr;
-    Image depth;
+    Image depth; // also sampled: the far field's splats are tested against it
     Image ldr;
+    // The far field's visibility buffer: per pixel one 64-bit word (far_splat.h), row-major.
+    Buffer farVisibility;
 };
 
 // Throws meadow::Error when the device cannot use the formats as meadow needs.

@@ -142,6 +142,11 @@ std::vector<std::string> missingRequirements(VkPhysicalDevice pd, const ContextO
             missing.push_back("feature multiDrawIndirect");
         if (!f2.features.drawIndirectFirstInstance)
             missing.push_back("feature drawIndirectFirstInstance");
+        // The far field's visibility buffer: 64-bit atomicMin (far_splat.h).
+        if (!f2.features.shaderInt64)
+            missing.push_back("feature shaderInt64");
+        if (!f12.shaderBufferInt64Atomics)
+            missing.push_back("feature shaderBufferInt64Atomics");
     }
     if (!props.limits.timestampComputeAndGraphics)
         missing.push_back("limit timestampComputeAndGraphics");
@@ -357,11 +362,13 @@ void createContext(Context& ctx, const ContextOptions& options) {
     f13.maintenance4 = VK_TRUE;
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
     f12.hostQueryReset = VK_TRUE;
+    f12.shaderBufferInt64Atomics = VK_TRUE;
     VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES, &f12};
     f11.shaderDrawParameters = VK_TRUE;
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f11};
     f2.features.multiDrawIndirect = VK_TRUE;
     f2.features.drawIndirectFirstInstance = VK_TRUE;
+    f2.features.shaderInt64 = VK_TRUE;
 
     std::vector<const char*> deviceExtensions(std::begin(kDeviceExtensions), std::end(kDeviceExtensions));
     if (options.presentation)

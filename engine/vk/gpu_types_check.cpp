@@ -42,7 +42,16 @@ static_assert(offsetof(GpuClump, light) == 48);
 static_assert(offsetof(GpuClump, yawBins) == 64);
 static_assert(offsetof(GpuClump, ground) == 80);
 static_assert(offsetof(GpuClump, albedo) == 96);
-static_assert(sizeof(GpuClump) == 112);
+static_assert(offsetof(GpuClump, far) == 112);
+static_assert(sizeof(GpuClump) == 128);
+static_assert(offsetof(GpuFarSample, position) == 0);
+static_assert(offsetof(GpuFarSample, data) == 16);
+static_assert(sizeof(GpuFarSample) == 32);
+static_assert(offsetof(GpuFarDispatch, groupsX) == 0);
+static_assert(offsetof(GpuFarDispatch, groupsY) == 4);
+static_assert(offsetof(GpuFarDispatch, groupsZ) == 8);
+static_assert(offsetof(GpuFarDispatch, count) == 12);
+static_assert(sizeof(GpuFarDispatch) == 16);
 
 static_assert(offsetof(GpuLodVertex, positionU) == 0);
 static_assert(offsetof(GpuLodVertex, normalV) == 16);
@@ -81,8 +90,8 @@ static_assert(offsetof(GpuDrawIndexedCommand, firstInstance) == offsetof(VkDrawI
 
 static_assert(offsetof(GpuCullStats, visibleInstances) == 0);
 static_assert(offsetof(GpuCullStats, testedInstances) == 4);
-static_assert(offsetof(GpuCullStats, pad0) == 8);
-static_assert(offsetof(GpuCullStats, pad1) == 12);
+static_assert(offsetof(GpuCullStats, farInstances) == 8);
+static_assert(offsetof(GpuCullStats, farSamples) == 12);
 static_assert(sizeof(GpuCullStats) == 16);
 
 } // namespace meadow::gpu

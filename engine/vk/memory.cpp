@@ -282,6 +282,17 @@ VkSampler createLinearSampler(Context& ctx) {
     return sampler;
 }
 
+VkSampler createNearestSampler(Context& ctx) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = VK_FILTER_NEAREST;
+    info.minFilter = VK_FILTER_NEAREST;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkSampler sampler;
+    VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));
+    return sampler;
+}
+
 void readbackBuffer(Context& ctx, const Buffer& source, void* data, VkDeviceSize size, VkDeviceSize sourceOffset) {
     if (size == 0)
         return;

@@ -98,6 +98,8 @@ Image createTexture(Context& context, VkExtent2D extent, VkFormat format, const 
 
 // A trilinear sampler that clamps to the edge (atlas regions must not bleed across the border).
 VkSampler createLinearSampler(Context& context);
+// Point sampling, for images read texel by texel (texelFetch), such as depth.
+VkSampler createNearestSampler(Context& context);
 
 // Copies `size` bytes of a buffer back to host memory and waits.
 void readbackBuffer(Context& context, const Buffer& source, void* data, VkDeviceSize size,

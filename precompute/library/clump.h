@@ -3,6 +3,7 @@
 // the pipeline turns them into these, and only these are written and read.
 #pragma once
 
+#include "library/far_samples.h"
 #include "library/mesh.h"
 #include "library/motion_basis.h"
 #include "library/motion_graph.h"
@@ -101,6 +102,7 @@ struct LibraryClump {
     std::array<ClumpLod, kLodCount> lods; // LOD 0 is the full mesh, reordered for the vertex cache
     MotionGraph graph;
     std::vector<LevelStats> levels;
+    FarSamples far; // surface samples for the far field, over LOD 0, playing the last LOD's vertices
 };
 
 // The LOD's mesh at a motion frame: the gathered vertices of meshAtFrame with the LOD's modes.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gpu_types.h"
+#include "library/far_samples.h"
 #include "library/motion_basis.h"
 #include "library/terrain.h"
 
@@ -69,6 +70,7 @@ struct LibraryRock {
     uint32_t groundResolution = 0;
     float groundSize = 0.0f;
     std::vector<float> groundTransfer; // resolution^2 points x 3 channels x order^2
+    FarSamples far;                    // surface samples for the far field, over LOD 0, playing the last LOD's vertices
 };
 
 // The field: every instance of a clump or a rock on the terrain (docs/ARCHITECTURE.md).

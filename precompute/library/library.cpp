@@ -23,6 +23,7 @@ constexpr SectionCodec kSections[] = {
     {"TFLD", writeInstanceSection, readInstanceSection},
     {"ROCK", writeRockSection, readRockSection},
     {"PLCE", writePlacementSection, readPlacementSection},
+    {"FARS", writeFarSamplesSection, readFarSamplesSection},
 };
 
 } // namespace

@@ -16,6 +16,9 @@
 //   "SKYD" the day of sky: SH order, backdrop size, source (0 analytic, 1 panoramas), then per
 //          frame its time, sun direction, radiance and irradiance, SH and backdrop image
 //                                                                            sky_section.cpp
+//   "FARS" the far field's surface samples (library/far_samples.h): u32 clump count, then per
+//          clump f32 area, u32 count, count x {f32 x, y, z; u32 normal, albedo, vertex}; the
+//          same for the rocks                                                far_samples_section.cpp
 #pragma once
 
 #include "gpu_types.h"

@@ -30,6 +30,8 @@ void writeRockSection(ByteWriter& w, const Library& library); // ROCK
 void readRockSection(ByteReader& r, const std::string& where, Library& library);
 void writePlacementSection(ByteWriter& w, const Library& library); // PLCE
 void readPlacementSection(ByteReader& r, const std::string& where, Library& library);
+void writeFarSamplesSection(ByteWriter& w, const Library& library); // FARS, after CLMP and ROCK
+void readFarSamplesSection(ByteReader& r, const std::string& where, Library& library);
 
 // Instances (TFLD, and the rocks' in ROCK): position and scale (w, -1 when mirrored), yaw,
 // bounding radius, mesh (28 bytes each). The reader checks every value is finite, |scale| is 1 and

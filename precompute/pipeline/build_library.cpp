@@ -6,6 +6,7 @@
 #include "pipeline/clump_light.h"
 #include "pipeline/clump_lod.h"
 #include "pipeline/clump_motion.h"
+#include "pipeline/far_samples.h"
 #include "pipeline/field_placement.h"
 #include "pipeline/rocks.h"
 #include "plants/atlas.h"
@@ -166,6 +167,18 @@ Library buildLibrary(const Scene& scene, bool quiet) {
     library.field.terrain = placed.terrain;
     library.field.windDirection = glm::normalize(glm::vec2(scene.wind.direction.x, scene.wind.direction.z));
     library.field.stats = placed.stats;
+
+    // The far field's surface samples of every clump and rock, over LOD 0, playing the last LOD.
+    const auto farStart = std::chrono::steady_clock::now();
+    buildLibraryFarSamples(library, scene.far.samplesPerClump, scene.seed);
+    size_t farSamples = 0;
+    for (const LibraryClump& clump : library.clumps)
+        farSamples += clump.far.samples.size();
+    for (const LibraryRock& rock : library.field.rocks)
+        farSamples += rock.far.samples.size();
+    say("far field: %u surface samples per clump and rock, %zu in all over %zu clumps and %zu rocks (%.1f ms)",
+        scene.far.samplesPerClump, farSamples, library.clumps.size(), library.field.rocks.size(),
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - farStart).count());
     return library;
 }
 

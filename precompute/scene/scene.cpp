@@ -395,6 +395,8 @@ Scene loadScene(const std::filesystem::path& path, const std::string& preset, st
         readLight(resolved["light"], scene.light, check);
     if (resolved.contains("lod"))
         readLod(resolved["lod"], scene.lod, check);
+    if (preset == "ci")
+        scene.far.samplesPerClump = 1024;
 
     scene.resolved = std::move(resolved);
     return scene;

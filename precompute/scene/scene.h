@@ -93,6 +93,12 @@ struct LodParams {
     std::array<float, 5> triangleFractions{1.0f, 1.0f / 3.0f, 1.0f / 10.0f, 1.0f / 20.0f, 1.0f / 30.0f};
 };
 
+// The far field's surface samples (library/far_samples.h): not a scene key, set by the preset
+// (full 4096 per clump and rock, ci 1024).
+struct FarParams {
+    uint32_t samplesPerClump = 4096;
+};
+
 struct Scene {
     std::filesystem::path path;
     std::string name;
@@ -107,6 +113,7 @@ struct Scene {
     SkySource sky;
     LightParams light;
     LodParams lod;
+    FarParams far;
     nlohmann::json resolved; // the scene after the preset merge, with the effective seed
 };
 

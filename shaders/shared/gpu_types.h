@@ -23,6 +23,12 @@ MEADOW_CONST kCullGroupSize = 64;
 MEADOW_CONST kAnimateGroupSize = 64;
 MEADOW_CONST kLightGroupSize = 64;
 MEADOW_CONST kTonemapGroupSize = 8;
+// The far field (far_splat.h): one splat workgroup per far instance (at most kFarMaxGroups, each
+// then taking every kFarMaxGroups-th instance), its threads striding over the instance's samples;
+// the resolve pass one thread per pixel.
+MEADOW_CONST kFarGroupSize = 64;
+MEADOW_CONST kFarMaxGroups = 65535;
+MEADOW_CONST kFarResolveGroupSize = 8;
 
 // Motion steps the animate pass takes at most in one frame: 10 s of motion, so the field keeps
 // real time at any frame rate down to 0.1 fps. After a longer stall (a minimised window, a
@@ -52,9 +58,10 @@ struct GpuFrame {
     vec4 skyZenith;        // rgb unused, w exposure (radiance -> display, before the tone curve)
     vec4 skyHorizon;       // rgb radiance of the sky at the horizon (haze), w unused
     uvec4 counts;          // x instance count, y draw buckets, z frame index, w LODs per clump (1: no choice)
-    vec4 lodScreen;        // x pixels per unit of radius at unit distance (0.5 height P[1][1]), yzw unused
+    vec4 lodScreen;        // x pixels per unit of radius at unit distance (0.5 height P[1][1]), y far-field
+                           // samples per pixel of projected surface (far_splat.h), z width, w height (px)
     vec4 lodSwitchRadius;  // GpuLodParams::switchRadius (lod_select.h), px
-    vec4 lodBand;          // x band, y jitter, z hysteresis (GpuLodParams), w unused
+    vec4 lodBand;          // x band, y jitter, z hysteresis, w far radius (GpuLodParams; 0: no far field)
     // The wind over the field (wind_field.h): travelling waves and gusts of wind level.
     vec4 windWave;  // xy unit (x, z) direction the waves travel, z base level, w wave amplitude (levels)
     vec4 windShape; // x 1 / wavelength (1/m), y wave cycles per motion tick, z gust amplitude (levels),
@@ -92,6 +99,17 @@ struct GpuClump {
                       // point), y first vec4 of its light (per variant, per point), z points per side (0:
                       // none), w unused
     vec4 albedo;      // rgb constant albedo, w 1: use it instead of the atlas
+    uvec4 far;        // the far field's surface samples: x first GpuFarSample, y samples, z their surface
+                      // (m^2, float bits), w 1: a closed surface (a rock), whose samples facing away are
+                      // hidden, 0: two-sided sheets
+};
+
+// One surface sample of a clump for the far field (precompute/library/far_samples.h), as the
+// splat pass reads it (32 bytes).
+struct GpuFarSample {
+    vec4 position; // xyz clump space at the mean pose, w unused
+    uvec4 data;    // x normal (octahedral snorm16 pair), y linear albedo (RGB9E5, far_splat.h), z the clump vertex
+                   // whose light it takes, w the GpuLodVertex of the last LOD whose motion it follows
 };
 
 // One vertex of a clump's LOD mesh, pulled by gl_VertexIndex: the clump vertex at its mean pose
@@ -134,8 +152,16 @@ struct GpuDrawIndexedCommand {
 struct GpuCullStats {
     uint visibleInstances;
     uint testedInstances;
-    uint pad0;
-    uint pad1;
+    uint farInstances; // drawn (in part, while crossfading) as the far field
+    uint farSamples;   // splats those instances draw
+};
+
+// The splat pass's indirect dispatch (VkDispatchIndirectCommand) and the far list's length.
+struct GpuFarDispatch {
+    uint groupsX;
+    uint groupsY;
+    uint groupsZ;
+    uint count; // far instances listed this frame
 };
 
 #ifdef __cplusplus

@@ -34,6 +34,7 @@ inline float clamp(float x, float lo, float hi) {
 #endif
 
 MEADOW_LOD_CONST kLodSelectCount = 5; // LODs 0 .. 4
+MEADOW_LOD_CONST kLodFar = 5;         // the coordinate of an instance drawn as the far field alone
 
 // Values in registers only (never in a buffer: the frame carries them as GpuFrame::lodSwitchRadius
 // and lodBand), so only C++ and GLSL need to agree on the members.
@@ -42,7 +43,9 @@ struct GpuLodParams {
     float band;            // half-width of each crossfade band, relative to its radius (0 .. 0.5)
     float jitter;          // relative spread of the switch radii between instances (0 .. 0.5)
     float hysteresis;      // in LOD coordinate units (0 .. 0.5)
-    float pad;
+    // px: below farRadius the far field (surface-sample splats, far_splat.h) replaces LOD 4, with
+    // the same jitter, band and hysteresis, up to the coordinate kLodFar; 0: no far field.
+    float farRadius;
 };
 
 struct GpuLodChoice {
@@ -65,13 +68,17 @@ MEADOW_LOD_FN float lodInstanceRandom(uint instance) {
 MEADOW_LOD_CONST kLodFadeEntryBit = 0x80000000u;
 
 // The continuous coordinate of a screen radius r for an instance whose random number is u in
-// [0, 1). Non-increasing in r.
+// [0, 1). Non-increasing in r. In [0, kLodSelectCount - 1], or [0, kLodFar] with a far field.
 MEADOW_LOD_FN float lodCoordinate(GpuLodParams p, float r, float u) {
     float scale = 1.0f + p.jitter * (u - 0.5f);
     float x = 0.0f;
     for (uint i = 0u; i < kLodSelectCount - 1u; ++i) {
         float t = p.switchRadius[i] * scale;
         // 0 above the band, 1 below it, linear across it.
+        x += clamp((t * (1.0f + p.band) - r) / (2.0f * p.band * t), 0.0f, 1.0f);
+    }
+    if (p.farRadius > 0.0f) {
+        float t = p.farRadius * scale;
         x += clamp((t * (1.0f + p.band) - r) / (2.0f * p.band * t), 0.0f, 1.0f);
     }
     return x;
@@ -87,7 +94,7 @@ MEADOW_LOD_FN GpuLodChoice lodSelect(GpuLodParams p, float r, float u, float pre
     c.x = x;
     c.lod = uint(floor(x));
     c.fade = x - floor(x);
-    c.fadeLod = c.fade > 0.0f ? min(c.lod + 1u, kLodSelectCount - 1u) : c.lod;
+    c.fadeLod = c.fade > 0.0f ? min(c.lod + 1u, kLodFar) : c.lod;
     return c;
 }
 

@@ -13,12 +13,28 @@ TEST(SpirvReflect, CullPassLayout) {
     EXPECT_EQ(r.stage, VK_SHADER_STAGE_COMPUTE_BIT);
     EXPECT_EQ(r.localSize[0], gpu::kCullGroupSize);
     EXPECT_EQ(r.localSize[1], 1u);
-    // Frame; instances, draws, visible list, statistics, LOD state, clumps, motion states, draw records.
-    ASSERT_EQ(r.bindings.size(), 9u);
+    // Frame; instances, draws, visible list, statistics, LOD state, clumps, motion states, draw records,
+    // the far list and the far dispatch.
+    ASSERT_EQ(r.bindings.size(), 11u);
     EXPECT_EQ(r.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-    for (uint32_t b = 1; b <= 8; ++b)
+    for (uint32_t b = 1; b <= 10; ++b)
         EXPECT_EQ(r.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
     EXPECT_EQ(r.pushConstantBytes, 0u);
+}
+
+TEST(SpirvReflect, FarPassesLayout) {
+    ShaderReflection splat = reflectShader(findShader("far_splat.comp"), "far_splat.comp");
+    EXPECT_EQ(splat.localSize[0], gpu::kFarGroupSize);
+    // Frame; far list, dispatch, draw records, clumps, samples, LOD vertices, motion, light; the
+    // meshes' depth; the visibility buffer. The mirror plane as a push constant.
+    ASSERT_EQ(splat.bindings.size(), 11u);
+    EXPECT_EQ(splat.bindings.at(9), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    EXPECT_EQ(splat.bindings.at(10), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    EXPECT_EQ(splat.pushConstantBytes, 16u);
+    ShaderReflection resolve = reflectShader(findShader("far_resolve.comp"), "far_resolve.comp");
+    EXPECT_EQ(resolve.localSize[0], gpu::kFarResolveGroupSize);
+    EXPECT_EQ(resolve.localSize[1], gpu::kFarResolveGroupSize);
+    EXPECT_EQ(resolve.bindings.at(2), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
 }
 
 TEST(SpirvReflect, TonemapUsesStorageImages) {

@@ -47,7 +47,7 @@ TEST(LibraryFile, GoldenBytesPinTheFormat) {
     writeLibraryFile(p, lib);
     std::vector<uint8_t> bytes = readAll(p);
     ASSERT_EQ(bytes.size(), 32u + 32u + 2u);
-    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 6, 0, 0, 0, 1, 0, 0, 0};
+    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 7, 0, 0, 0, 1, 0, 0, 0};
     EXPECT_EQ(std::vector<uint8_t>(bytes.begin(), bytes.begin() + 16), std::vector<uint8_t>(header, header + 16));
     EXPECT_EQ(bytes[16], 0x08); // inputHash, little-endian
     EXPECT_EQ(bytes[23], 0x01);
@@ -211,6 +211,31 @@ TEST(Library, SameSceneAndSeedGiveTheSameBytes) {
     }
     // Noon is brighter than midnight (c00 of green).
     EXPECT_GT(lib.sky.frames[lib.sky.frames.size() / 2].sh[1], 100.0f * lib.sky.frames[0].sh[1]);
+    // The far field's surface samples (FARS): the ci preset's 1024 per clump and rock over LOD 0's
+    // whole area (the iris atlas cuts nothing out), each playing a vertex of the last LOD.
+    auto checkFar = [](const FarSamples& far, const std::vector<uint32_t>& lastLod, size_t vertices, double area,
+                       const std::string& name) {
+        EXPECT_EQ(far.samples.size(), 1024u) << name;
+        EXPECT_NEAR(far.area, area, area * 1e-4) << name;
+        std::vector<bool> isFar(vertices, false);
+        for (uint32_t v : lastLod)
+            isFar[v] = true;
+        for (const FarSample& s : far.samples)
+            ASSERT_TRUE(s.vertex < vertices && isFar[s.vertex]) << name << " plays vertex " << s.vertex;
+    };
+    auto meshArea = [](auto position, const std::vector<uint32_t>& indices) {
+        double area = 0.0;
+        for (size_t t = 0; t < indices.size(); t += 3)
+            area += 0.5 * glm::length(glm::cross(position(indices[t + 1]) - position(indices[t]),
+                                                 position(indices[t + 2]) - position(indices[t])));
+        return area;
+    };
+    checkFar(clump.far, clump.lods[kLodCount - 1].vertices, clump.mesh.vertices.size(),
+             meshArea([&](uint32_t v) { return glm::vec3(clump.mesh.vertices[v].positionU); }, clump.mesh.indices),
+             clump.name);
+    for (const LibraryRock& rock : lib.field.rocks)
+        checkFar(rock.far, rock.lods[kLodCount - 1].vertices, rock.mesh.positions.size(),
+                 meshArea([&](uint32_t v) { return rock.mesh.positions[v]; }, rock.mesh.indices), rock.mesh.name);
 }
 
 TEST(Library, CorruptCacheIsRebuiltNotTrusted) {

@@ -1,7 +1,7 @@
 """Checks the inspect JSON of the default scene's ci library (precompute_inspect.sh): a field of
 clumps and rocks without overlaps, Wang tiles denser than Poisson discs, four clumps whose motion
 graphs are strongly connected at every wind level, whose LOD 0 plays its motion within 1 %, and
-whose five LODs have ever fewer triangles."""
+whose five LODs have ever fewer triangles; every clump and rock with its far-field samples."""
 import json
 import sys
 
@@ -27,3 +27,7 @@ for c in j["clumps"]:
     assert 0 < wind["medianSeconds"]["down"] <= wind["p95Seconds"]["down"] < 100, (c["name"], wind)
     lods = c["lods"]
     assert len(lods) == 5 and all(lods[i]["triangles"] > lods[i + 1]["triangles"] for i in range(4)), c["name"]
+# The far field's surface samples: the ci preset's 1024 per clump and rock, over a positive area.
+for far in [c["far"] for c in j["clumps"]] + [r["far"] for r in j["rocks"]]:
+    assert far["samples"] == 1024 and far["area"] > 0 and far["bytes"] == 8 + 28 * 1024, far
+assert len(j["rocks"]) == f["rockVariants"], j["rocks"]

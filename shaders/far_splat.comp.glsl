@@ -1,0 +1,141 @@
+#version 460
+// Far field, splat pass: far instances drawn as surface samples (issue 18; far_splat.h). One
+// workgroup per far instance of the cull pass's far list (indirect dispatch, each group taking
+// every gl_NumWorkGroups-th entry), its threads striding over the first `count` of the clump's
+// shuffled samples. Each sample moves with the last-LOD vertex it follows (x̄ + U q at that LOD's
+// modes, blended across graph jumps, as instance.vert) and takes the light of its triangle's
+// nearest vertex to first order in that displacement, projects to a square of `side` pixels, and is kept where it is
+// nearer than the meshes' depth and, while the instance crossfades from LOD 4, where the dither
+// gives the pixel to the far field. The nearest sample of a pixel wins by a 64-bit atomicMin of
+// (depth key, RGB9E5 radiance), which is order independent; far_resolve.comp writes the winners.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+#include "common.glsl"
+#include "lod_select.h"
+#include "draw_instance.h"
+#include "far_splat.h"
+
+layout(local_size_x = kFarGroupSize) in;
+
+MEADOW_FRAME_BLOCK(0, 0)
+layout(set = 0, binding = 1, std430) readonly buffer FarList { uvec2 farList[]; };
+layout(set = 0, binding = 2, std430) readonly buffer FarDispatch { GpuFarDispatch farDispatch; };
+layout(set = 0, binding = 3, std430) readonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
+layout(set = 0, binding = 4, std430) readonly buffer Clumps { GpuClump clumps[]; };
+layout(set = 0, binding = 5, std430) readonly buffer FarSamples { GpuFarSample farSamples[]; };
+layout(set = 0, binding = 6, std430) readonly buffer LodVertices { GpuLodVertex lodVertices[]; };
+layout(set = 0, binding = 7, std430) readonly buffer MotionData { float motionData[]; };
+layout(set = 0, binding = 8, std430) readonly buffer VertexLight { uvec4 vertexLight[]; };
+layout(set = 0, binding = 9) uniform sampler2D meshDepth;
+layout(set = 0, binding = 10, std430) buffer Visibility { uint64_t visibility[]; };
+// As instance.vert: the mirror plane's normal (xz).
+layout(push_constant) uniform FarParams { vec4 mirrorNormal; };
+
+// far_samples.h's octahedral normal.
+vec3 unpackOctahedralNormal(uint packed) {
+    vec2 p = unpackSnorm2x16(packed);
+    vec3 n = vec3(p.x, p.y, 1.0 - abs(p.x) - abs(p.y));
+    if (n.z < 0.0)
+        n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(n);
+}
+
+// The far field's colour in the LOD view (instance.frag's LOD colours are red to purple).
+const vec3 kFarDebugColor = vec3(0.05, 0.9, 0.85);
+
+void main() {
+    uint total = farDispatch.count;
+    ivec2 size = ivec2(frame.lodScreen.zw);
+    for (uint item = gl_WorkGroupID.x; item < total; item += gl_NumWorkGroups.x) {
+        uvec2 listed = farList[item];
+        uint entry = listed.x;
+        uint count = listed.y;
+        GpuDrawInstance inst = drawInstances[entry & ~kLodFadeEntryBit];
+        bool isFadeLod = (entry & kLodFadeEntryBit) != 0u;
+        float fade = inst.pose.w;
+        GpuClump clump = clumps[inst.offsets.w >> 16u];
+        bool mirrored = inst.positionScale.w < 0.0;
+        vec3 m = vec3(mirrorNormal.x, 0.0, mirrorNormal.z);
+        float c = inst.pose.x, s = inst.pose.y;
+        mat3 yaw = mat3(c, 0.0, -s, 0.0, 1.0, 0.0, s, 0.0, c);
+        float scale = abs(inst.positionScale.w);
+        bool blending = inst.pose.z > 0.0;
+        // Each drawn sample stands for an equal share of the surface (stochastic pruning).
+        float areaPerSample = uintBitsToFloat(clump.far.z) * scale * scale / float(count);
+        for (uint k = gl_LocalInvocationID.x; k < count; k += kFarGroupSize) {
+            GpuFarSample farSample = farSamples[clump.far.x + k];
+            GpuLodVertex v = lodVertices[farSample.data.w];
+            uint rank = v.motion.w & 0xffffu;
+            uint q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
+            vec3 d = vec3(0.0);
+            for (uint r = 0u; r < rank; ++r) {
+                uint row = v.motion.x + 3u * r;
+                float q = motionData[q0 + r];
+                if (blending)
+                    q = mix(q, motionData[q1 + r], inst.pose.z);
+                d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * q;
+            }
+            vec3 p = farSample.position.xyz + d, n = unpackOctahedralNormal(farSample.data.x);
+            if (mirrored) {
+                p -= 2.0 * dot(p, m) * m;
+                n -= 2.0 * dot(n, m) * m;
+            }
+            vec3 world = inst.positionScale.xyz + yaw * (p * scale);
+            vec4 clip = frame.viewProj * vec4(world, 1.0);
+            if (clip.w <= 0.0)
+                continue;
+            vec3 ndc = clip.xyz / clip.w;
+            if (ndc.z <= 0.0 || ndc.z > 1.0)
+                continue;
+            // Stochastic coverage: below a pixel of footprint, the sample covers its pixel with
+            // that probability; above, a square of about its footprint.
+            vec3 toEye = frame.cameraPosition.xyz - world;
+            float cosine = dot(yaw * n, toEye) / max(length(toEye), 1e-6);
+            if (cosine < 0.0 && clump.far.w != 0u)
+                continue; // the far side of a closed surface: hidden by its near side
+            float footprint = farSampleFootprint(areaPerSample, frame.lodScreen.x / clip.w, cosine);
+            if (footprint < 1.0 && farSampleRandom(entry & ~kLodFadeEntryBit, k) >= footprint)
+                continue;
+            uint side = farSplatSide(footprint);
+            vec2 pixel = (ndc.xy * 0.5 + 0.5) * vec2(size);
+            ivec2 corner = ivec2(floor(pixel)) - ivec2(int(side - 1u) / 2);
+            if (corner.x >= size.x || corner.y >= size.y || corner.x + int(side) <= 0 || corner.y + int(side) <= 0)
+                continue;
+
+            // The side of the sheet the camera sees, lit as instance.vert lights its vertex.
+            bool front = cosine >= 0.0;
+            uint base = inst.offsets.z + farSample.data.z * (inst.offsets.w & 0xffffu);
+            uvec4 w0 = vertexLight[base], w1 = vertexLight[base + 1u], w2 = vertexLight[base + 2u];
+            vec3 irradiance;
+            if (front) {
+                vec4 l0 = vec4(unpackHalf2x16(w0.x), unpackHalf2x16(w0.y));
+                vec4 l1 = vec4(unpackHalf2x16(w0.z), unpackHalf2x16(w0.w));
+                vec4 l2 = vec4(unpackHalf2x16(w1.x), unpackHalf2x16(w1.y));
+                irradiance = vec3(l0.x + dot(l0.yzw, d), l1.x + dot(l1.yzw, d), l2.x + dot(l2.yzw, d));
+            } else {
+                vec4 l3 = vec4(unpackHalf2x16(w1.z), unpackHalf2x16(w1.w));
+                vec4 l4 = vec4(unpackHalf2x16(w2.x), unpackHalf2x16(w2.y));
+                vec4 l5 = vec4(unpackHalf2x16(w2.z), unpackHalf2x16(w2.w));
+                irradiance = vec3(l3.x + dot(l3.yzw, d), l4.x + dot(l4.yzw, d), l5.x + dot(l5.yzw, d));
+            }
+            vec3 albedo = unpackRgb9e5(farSample.data.y);
+            vec3 radiance = albedo * max(irradiance, 0.0) / kPi;
+            if (frame.motion.z == kDebugViewLod)
+                radiance = kFarDebugColor * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
+            uint64_t word = packUint2x32(uvec2(packRgb9e5(radiance.r, radiance.g, radiance.b), farDepthKey(ndc.z)));
+
+            for (uint j = 0u; j < side; ++j)
+                for (uint i = 0u; i < side; ++i) {
+                    ivec2 at = corner + ivec2(i, j);
+                    if (at.x < 0 || at.y < 0 || at.x >= size.x || at.y >= size.y)
+                        continue;
+                    if (fade > 0.0 && !lodDitherKeeps(isFadeLod, fade, uint(at.x), uint(at.y)))
+                        continue;
+                    if (texelFetch(meshDepth, at, 0).r >= ndc.z)
+                        continue; // a mesh (or the terrain) is as near or nearer
+                    atomicMin(visibility[uint(at.y) * uint(size.x) + uint(at.x)], word);
+                }
+        }
+    }
+}

@@ -1,0 +1,175 @@
+// The far field's per-sample arithmetic (issue 18; docs/ARCHITECTURE.md, The far field), one
+// function body compiled as C++ (the CPU reference, tests) and as GLSL (the splat and resolve
+// passes), like lod_select.h.
+//
+// Far instances are drawn as surface samples (precompute/library/far_samples.h): each sample is
+// moved and lit like the mesh vertex it follows, projected to one pixel (or a small square), and
+// merged into a visibility buffer of 64-bit words with atomicMin (Schütz, Kerbl and Wimmer 2021).
+// A word is (depth key << 32) | colour:
+//   - the depth key is the bit pattern of the reversed-Z depth, complemented: non-negative floats
+//     order like their bits, so the nearest sample (largest depth) has the smallest key;
+//   - the colour is RGB9E5 (the shared-exponent format of VK_FORMAT_E5B9G9R9_UFLOAT_PACK32), so
+//     HDR radiance survives to the tone mapper;
+//   - equal depths resolve to the smaller colour word: whatever order the threads run in, the
+//     same samples give the same buffer (determinism).
+// An empty pixel holds kFarEmpty in both halves.
+//
+// How many samples an instance draws follows its projected size (stochastic pruning, Cook,
+// Halstead, Planck and Ryu 2007): a prefix of its clump's shuffled samples, each then standing
+// for a larger share of the surface.
+//
+// Every operation here is exact or correctly rounded (bit patterns, ldexp, floor, products of two
+// values, no fused multiply-add where it is marked precise), so C++ and GLSL agree bit for bit.
+#ifndef MEADOW_FAR_SPLAT_H
+#define MEADOW_FAR_SPLAT_H
+
+#ifdef __cplusplus
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+namespace meadow::gpu {
+using uint = std::uint32_t;
+#define MEADOW_FAR_CONST inline constexpr uint
+#define MEADOW_FAR_FCONST inline constexpr float
+#define MEADOW_FAR_FN inline
+#define MEADOW_FAR_PRECISE
+struct FarVec3 {
+    float x, y, z;
+};
+inline uint farFloatBits(float f) {
+    uint u;
+    std::memcpy(&u, &f, sizeof u);
+    return u;
+}
+inline float farLdexp(float x, int e) {
+    return std::ldexp(x, e);
+}
+inline float farMax(float a, float b) {
+    return a > b ? a : b;
+}
+inline float farMin(float a, float b) {
+    return a < b ? a : b;
+}
+inline float farFloor(float x) {
+    return std::floor(x);
+}
+inline float farCeil(float x) {
+    return std::ceil(x);
+}
+inline float farSqrt(float x) {
+    return std::sqrt(x);
+}
+#else
+#define MEADOW_FAR_CONST const uint
+#define MEADOW_FAR_FCONST const float
+#define MEADOW_FAR_FN
+#define MEADOW_FAR_PRECISE precise
+#define FarVec3 vec3
+#define farFloatBits(f) floatBitsToUint(f)
+#define farLdexp(x, e) ldexp(x, e)
+#define farMax(a, b) max(a, b)
+#define farMin(a, b) min(a, b)
+#define farFloor(x) floor(x)
+#define farCeil(x) ceil(x)
+#define farSqrt(x) sqrt(x)
+#endif
+
+MEADOW_FAR_CONST kFarEmpty = 0xffffffffu; // both halves of an empty visibility word
+
+// RGB9E5: three 9-bit mantissas and a 5-bit exponent with bias 15 (the Vulkan specification's
+// shared-exponent conversion, "Shared Exponent to RGB" and back).
+MEADOW_FAR_CONST kRgb9e5MantissaBits = 9u;
+MEADOW_FAR_CONST kRgb9e5Bias = 15u;
+MEADOW_FAR_FCONST kRgb9e5Max = 65408.0f; // (2^9 - 1) / 2^9 * 2^(31 - 15)
+
+// The key of a reversed-Z depth in [0, 1] (1 at the near plane): nearer is smaller.
+MEADOW_FAR_FN uint farDepthKey(float depth) {
+    return ~farFloatBits(farMax(depth, 0.0f));
+}
+
+// Non-negative finite radiance to RGB9E5; values above kRgb9e5Max saturate, negative ones are 0.
+MEADOW_FAR_FN uint packRgb9e5(float r, float g, float b) {
+    float rc = farMin(farMax(r, 0.0f), kRgb9e5Max);
+    float gc = farMin(farMax(g, 0.0f), kRgb9e5Max);
+    float bc = farMin(farMax(b, 0.0f), kRgb9e5Max);
+    float maxc = farMax(rc, farMax(gc, bc));
+    // floor(log2(maxc)) from the float's exponent field, exact; below 2^-16 the format's least
+    // exponent takes over (denormals and zero included).
+    int e = int((farFloatBits(maxc) >> 23u) & 0xffu) - 127;
+    int exponent = (e < -16 ? -16 : e) + 1 + int(kRgb9e5Bias);
+    int shift = exponent - int(kRgb9e5Bias) - int(kRgb9e5MantissaBits);
+    float maxs = farFloor(farLdexp(maxc, -shift) + 0.5f);
+    if (maxs >= 512.0f) {
+        exponent += 1;
+        shift += 1;
+    }
+    uint rs = uint(farFloor(farLdexp(rc, -shift) + 0.5f));
+    uint gs = uint(farFloor(farLdexp(gc, -shift) + 0.5f));
+    uint bs = uint(farFloor(farLdexp(bc, -shift) + 0.5f));
+    return rs | (gs << 9u) | (bs << 18u) | (uint(exponent) << 27u);
+}
+
+MEADOW_FAR_FN FarVec3 unpackRgb9e5(uint v) {
+    int shift = int(v >> 27u) - int(kRgb9e5Bias) - int(kRgb9e5MantissaBits);
+    FarVec3 c;
+    c.x = farLdexp(float(v & 0x1ffu), shift);
+    c.y = farLdexp(float((v >> 9u) & 0x1ffu), shift);
+    c.z = farLdexp(float((v >> 18u) & 0x1ffu), shift);
+    return c;
+}
+
+// How many of a clump's `available` shuffled samples a far instance draws: `density` samples per
+// pixel of its surface's projected area. `area` is the surface (m^2, one side) and
+// `pixelsPerMetre` the focal length in pixels over the distance; a sheet seen at a random angle
+// shows half its area on average. At least 1, at most `available`.
+MEADOW_FAR_FN uint farSampleCount(float area, float pixelsPerMetre, float density, uint available) {
+    MEADOW_FAR_PRECISE float projected = 0.5f * area * (pixelsPerMetre * pixelsPerMetre);
+    MEADOW_FAR_PRECISE float n = farCeil(density * projected);
+    return uint(farMax(1.0f, farMin(n, float(available))));
+}
+
+// A sample's share of the screen: its share of the surface, `areaPerSample` (m^2), seen at
+// `pixelsPerMetre` and turned by `cosine` (its normal against the view direction), in pixels.
+// Below one pixel the sample covers its pixel with that probability (stochastic coverage: a thin
+// leaf seen edge-on lights few pixels, as it covers little of them); above, a square of about that
+// area: `farSplatSide`.
+MEADOW_FAR_FN float farSampleFootprint(float areaPerSample, float pixelsPerMetre, float cosine) {
+    MEADOW_FAR_PRECISE float a = areaPerSample * (pixelsPerMetre * pixelsPerMetre);
+    MEADOW_FAR_PRECISE float f = a * farMin(farMax(cosine, -cosine), 1.0f);
+    return f;
+}
+
+// The side, in whole pixels, of the square a sample of `footprint` pixels covers (1 below 2.25
+// pixels), at most kFarMaxSplatSide.
+MEADOW_FAR_CONST kFarMaxSplatSide = 4u;
+MEADOW_FAR_FN uint farSplatSide(float footprint) {
+    float side = farFloor(farSqrt(farMax(footprint, 1.0f)) + 0.5f);
+    return uint(farMin(side, float(kFarMaxSplatSide)));
+}
+
+// The random number in [0, 1) that decides whether sample `index` of far instance `instance`
+// covers its pixel: a PCG hash (Jarzynski and Olano 2020) of both, 24 bits so the float is exact.
+// The same every frame, so the far field does not shimmer.
+MEADOW_FAR_FN float farSampleRandom(uint instance, uint index) {
+    uint state = (instance * 1664525u + index * 2654435769u) * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return float(((word >> 22u) ^ word) >> 8u) * (1.0f / 16777216.0f);
+}
+
+#ifdef __cplusplus
+} // namespace meadow::gpu
+#else
+#undef FarVec3
+#undef farFloatBits
+#undef farLdexp
+#undef farMax
+#undef farMin
+#undef farFloor
+#undef farCeil
+#undef farSqrt
+#endif
+#undef MEADOW_FAR_CONST
+#undef MEADOW_FAR_FCONST
+#undef MEADOW_FAR_FN
+#undef MEADOW_FAR_PRECISE
+#endif

@@ -1,0 +1,186 @@
+// The far field's shared arithmetic (shaders/shared/far_splat.h): the visibility word's depth key
+// and RGB9E5 colour, the sample count and splat size from projected size, and the far hand-over in
+// the LOD coordinate (lod_select.h).
+#include "far_splat.h"
+#include "lod_select.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+using namespace meadow::gpu;
+
+namespace {
+
+// The 64-bit word atomicMin keeps: depth key high, colour low.
+uint64_t word(float depth, float r, float g, float b) {
+    return (uint64_t(farDepthKey(depth)) << 32) | packRgb9e5(r, g, b);
+}
+
+} // namespace
+
+TEST(FarSplat, NearerDepthsHaveSmallerKeys) {
+    // Reversed Z: depth 1 at the near plane, 0 at infinity.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int i = 0; i < 10000; ++i) {
+        const float a = u(rng), b = u(rng);
+        if (a > b) {
+            EXPECT_LT(farDepthKey(a), farDepthKey(b)) << a << " " << b;
+        } else if (a < b) {
+            EXPECT_GT(farDepthKey(a), farDepthKey(b)) << a << " " << b;
+        }
+    }
+    EXPECT_LT(farDepthKey(1.0f), farDepthKey(std::nextafter(1.0f, 0.0f)));
+    EXPECT_LT(farDepthKey(1e-30f), farDepthKey(0.0f));
+    EXPECT_EQ(farDepthKey(-0.5f), farDepthKey(0.0f)); // behind the far end: as far as can be
+    EXPECT_LT(word(0.0f, 0.0f, 0.0f, 0.0f), (uint64_t(kFarEmpty) << 32) | kFarEmpty); // any sample beats empty
+}
+
+TEST(FarSplat, TheMinimumIsTheSameInAnyOrder) {
+    // Many samples on few pixels, equal depths included: the kept word per pixel does not depend
+    // on the order the samples arrive in.
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> depthStep(0, 3), pixel(0, 7);
+    std::uniform_real_distribution<float> colour(0.0f, 4.0f);
+    struct Splat {
+        int pixel;
+        uint64_t word;
+    };
+    std::vector<Splat> splats;
+    for (int i = 0; i < 400; ++i)
+        splats.push_back({pixel(rng), word(0.25f * float(depthStep(rng)), colour(rng), colour(rng), colour(rng))});
+    auto resolve = [](const std::vector<Splat>& in) {
+        std::vector<uint64_t> buffer(8, ~uint64_t(0));
+        for (const Splat& s : in)
+            buffer[size_t(s.pixel)] = std::min(buffer[size_t(s.pixel)], s.word);
+        return buffer;
+    };
+    const std::vector<uint64_t> first = resolve(splats);
+    for (int shuffle = 0; shuffle < 20; ++shuffle) {
+        std::shuffle(splats.begin(), splats.end(), rng);
+        EXPECT_EQ(resolve(splats), first);
+    }
+    for (uint64_t w : first)
+        EXPECT_EQ(uint32_t(w >> 32), farDepthKey(0.75f)); // the nearest depth used won each pixel
+}
+
+TEST(FarSplat, Rgb9e5MatchesTheVulkanConversion) {
+    // Exact cases: representable values come back unchanged.
+    for (float v : {0.0f, 1.0f, 0.5f, 3.0f, 511.0f, 65408.0f, 1.0f / 1024.0f}) {
+        const FarVec3 c = unpackRgb9e5(packRgb9e5(v, v, v));
+        EXPECT_EQ(c.x, v);
+        EXPECT_EQ(c.y, v);
+        EXPECT_EQ(c.z, v);
+    }
+    // The shared exponent follows the largest channel; the smaller ones lose bits below it.
+    const uint one = packRgb9e5(1.0f, 0.0f, 0.0f);
+    EXPECT_EQ(one >> 27, 16u); // 1.0 = 256 * 2^(16 - 15 - 9)
+    EXPECT_EQ(one & 0x1ffu, 256u);
+    // Saturation, negatives and zero.
+    const FarVec3 big = unpackRgb9e5(packRgb9e5(1e9f, -1.0f, 0.0f));
+    EXPECT_EQ(big.x, kRgb9e5Max);
+    EXPECT_EQ(big.y, 0.0f);
+    EXPECT_EQ(packRgb9e5(0.0f, 0.0f, 0.0f), 0u);
+    // Rounding to nearest: the error of each channel is at most half a step of the shared
+    // exponent, a step being 2^-9 of the power of two above the largest channel (twice that when
+    // the largest channel rounds up to the next power of two).
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> logScale(-12.0f, 15.0f), u(0.0f, 1.0f);
+    for (int i = 0; i < 20000; ++i) {
+        const float scale = std::exp2(logScale(rng));
+        const float rgb[3] = {u(rng) * scale, u(rng) * scale, u(rng) * scale};
+        const uint packed = packRgb9e5(rgb[0], rgb[1], rgb[2]);
+        const FarVec3 c = unpackRgb9e5(packed);
+        const float maxc = std::max({rgb[0], rgb[1], rgb[2]});
+        const int above = int(std::floor(std::log2(maxc))) + 1;
+        const int exponent = int(packed >> 27) - 15;
+        ASSERT_TRUE(exponent == above || (exponent == above + 1 && maxc >= std::ldexp(511.5f / 512.0f, above)))
+            << maxc << " " << exponent;
+        const float half = std::ldexp(0.5f, exponent - 9);
+        EXPECT_LE(std::abs(c.x - rgb[0]), half) << rgb[0];
+        EXPECT_LE(std::abs(c.y - rgb[1]), half) << rgb[1];
+        EXPECT_LE(std::abs(c.z - rgb[2]), half) << rgb[2];
+    }
+}
+
+TEST(FarSplat, SampleCountFollowsProjectedArea) {
+    // 0.2 m^2 of leaves seen at 100 px per metre: 1000 px of projected area, 2 samples per pixel.
+    EXPECT_EQ(farSampleCount(0.2f, 100.0f, 2.0f, 4096u), 2000u);
+    // Twice as far: a quarter.
+    EXPECT_EQ(farSampleCount(0.2f, 50.0f, 2.0f, 4096u), 500u);
+    // Never fewer than one, never more than the clump has.
+    EXPECT_EQ(farSampleCount(0.2f, 0.01f, 2.0f, 4096u), 1u);
+    EXPECT_EQ(farSampleCount(0.2f, 1000.0f, 2.0f, 4096u), 4096u);
+    // Non-increasing with distance.
+    uint previous = 4096u;
+    for (float ppm = 400.0f; ppm > 0.5f; ppm *= 0.97f) {
+        const uint n = farSampleCount(0.2f, ppm, 2.0f, 4096u);
+        EXPECT_LE(n, previous);
+        previous = n;
+    }
+}
+
+TEST(FarSplat, FootprintFollowsAreaDistanceAndAngle) {
+    // 1 cm^2 at 100 px per metre facing the camera: one pixel; at 60 degrees half; edge-on none.
+    EXPECT_FLOAT_EQ(farSampleFootprint(1e-4f, 100.0f, 1.0f), 1.0f);
+    EXPECT_FLOAT_EQ(farSampleFootprint(1e-4f, 100.0f, -0.5f), 0.5f); // either side of the sheet
+    EXPECT_EQ(farSampleFootprint(1e-4f, 100.0f, 0.0f), 0.0f);
+    EXPECT_FLOAT_EQ(farSampleFootprint(1e-4f, 200.0f, 1.0f), 4.0f);
+    // Squares only for footprints of several pixels, capped.
+    EXPECT_EQ(farSplatSide(0.3f), 1u);
+    EXPECT_EQ(farSplatSide(2.0f), 1u);
+    EXPECT_EQ(farSplatSide(4.0f), 2u);
+    EXPECT_EQ(farSplatSide(9.5f), 3u);
+    EXPECT_EQ(farSplatSide(1e6f), kFarMaxSplatSide);
+}
+
+TEST(FarSplat, CoverageRandomNumbersAreUniformAndFixed) {
+    // The share of samples kept below a footprint f is f (stochastic coverage), whichever instance.
+    for (uint instance : {0u, 7u, 123456u}) {
+        uint below = 0;
+        const uint n = 20000;
+        for (uint k = 0; k < n; ++k) {
+            const float u = farSampleRandom(instance, k);
+            ASSERT_GE(u, 0.0f);
+            ASSERT_LT(u, 1.0f);
+            below += u < 0.3f;
+        }
+        // Binomial: 0.3 n +- 5 sigma.
+        EXPECT_NEAR(double(below) / n, 0.3, 5.0 * std::sqrt(0.3 * 0.7 / n)) << instance;
+    }
+    EXPECT_EQ(farSampleRandom(5u, 9u), farSampleRandom(5u, 9u));
+    EXPECT_NE(farSampleRandom(5u, 9u), farSampleRandom(6u, 9u));
+}
+
+TEST(FarSplat, TheFarFieldTakesOverBelowItsRadiusLikeAnyLod) {
+    GpuLodParams p{};
+    const float radii[4] = {200.0f, 80.0f, 30.0f, 10.0f};
+    for (int i = 0; i < 4; ++i)
+        p.switchRadius[i] = radii[i];
+    p.band = 0.1f;
+    p.jitter = 0.3f;
+    p.hysteresis = 0.1f;
+    // Without a far field the coordinate stops at LOD 4.
+    EXPECT_EQ(lodCoordinate(p, 1.0f, 0.5f), 4.0f);
+    EXPECT_EQ(lodSelect(p, 1.0f, 0.5f, 4.0f).fadeLod, 4u);
+    // With one at 5 px: LOD 4 alone between the bands, far alone below 4.5 px (5 px, band 0.1),
+    // a crossfade with the same jitter across the band.
+    p.farRadius = 5.0f;
+    EXPECT_EQ(lodCoordinate(p, 7.0f, 0.5f), 4.0f);
+    EXPECT_EQ(lodCoordinate(p, 4.0f, 0.5f), float(kLodFar));
+    GpuLodChoice c = lodSelect(p, 5.0f, 0.5f, 4.5f);
+    EXPECT_EQ(c.lod, 4u);
+    EXPECT_EQ(c.fadeLod, kLodFar);
+    EXPECT_NEAR(c.fade, 0.5f, 1e-5f);
+    // Jittered per instance: 0.85x .. 1.15x of the far radius.
+    EXPECT_NEAR(lodCoordinate(p, 5.0f * 0.85f, 0.0f), 4.5f, 1e-5f);
+    EXPECT_NEAR(lodCoordinate(p, 5.0f * 1.15f, 1.0f), 4.5f, 1e-5f);
+    // Hysteresis inside the band, as for the meshes.
+    c = lodSelect(p, 5.05f, 0.5f, 4.5f);
+    EXPECT_EQ(c.x, 4.5f);
+}
