@@ -39,6 +39,8 @@ declare -A seeds=(
 declare -A max_len=([scene]=16384 [gltf]=16384 [library]=65536)
 
 export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1"
+# Leaks inside third-party libraries that meadow cannot free, as in scripts/sanitize.sh.
+export LSAN_OPTIONS="suppressions=$root/tests/system/robustness/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 status=0
 for target in "${targets[@]}"; do
