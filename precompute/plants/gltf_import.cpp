@@ -25,8 +25,29 @@ namespace {
 // tinygltf hands every image's bytes (from a data URI, a file or a buffer view) to this loader.
 // They are kept undecoded: only the base-colour textures the plant uses are decoded, with
 // OpenImageIO (decodeImage), so an unused image in a format meadow cannot read does no harm.
-bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-                    int size, void*) {
+// tinygltf (2.7) does not check an image's buffer view against its buffer before pointing into it:
+// `model` (the one being loaded) is used to check it here, before a byte is read.
+bool keepImageBytes(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                    const unsigned char* bytes, int size, void* model) {
+    if (image->bufferView >= 0) {
+        const tinygltf::Model& m = *static_cast<const tinygltf::Model*>(model);
+        const size_t view = static_cast<size_t>(image->bufferView);
+        bool inside = view < m.bufferViews.size();
+        if (inside) {
+            const tinygltf::BufferView& v = m.bufferViews[view];
+            inside = v.buffer >= 0 && static_cast<size_t>(v.buffer) < m.buffers.size();
+            if (inside) {
+                const size_t have = m.buffers[static_cast<size_t>(v.buffer)].data.size();
+                inside = v.byteOffset <= have && v.byteLength <= have - v.byteOffset &&
+                         static_cast<size_t>(std::max(size, 0)) <= v.byteLength;
+            }
+        }
+        if (!inside) {
+            if (err)
+                *err += "image " + std::to_string(index) + "'s buffer view lies outside its buffer";
+            return false;
+        }
+    }
     image->image.assign(bytes, bytes + std::max(size, 0));
     image->as_is = true;
     return true;
@@ -553,7 +574,7 @@ ImportedPlant importGltfPlantWithMaterials(const std::filesystem::path& path, co
                                                        : ": cannot open (no such file)"));
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(keepImageBytes, nullptr);
+    loader.SetImageLoader(keepImageBytes, &model);
     std::string err, warn;
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
