@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The far field for review: the three views of tests/system/far/far_field_views.sh (default, low
 # across the field, high oblique) at a larger size, each as a row of truth (every clump at LOD 0),
-# far field, LOD meshes alone and the far field's LOD view (cyan: the far field), into one sheet.
+# the far field's reference (its clumps as LOD 0 meshes, --far-lod0), the far field, the LOD meshes
+# alone and the far field's LOD view (cyan: the far field), into one sheet.
 #   scripts/far-field-sheet.sh [SCENE] [OUTDIR] [SIZE] [FAR_RADIUS] [PRESET]
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -10,14 +11,15 @@ radius="${4:-7}"; preset="${5:-ci}"
 meadow="$root/build/engine/meadow"
 [[ -x "$meadow" ]] || bash "$root/scripts/build.sh" "$root/build" -DCMAKE_BUILD_TYPE=Release >&2
 mkdir -p "$out"
-views=("default:" "low:-14,0.7,-14,10,0.5,8" "high:-22,16,-22,4,0,4")
+views=("default:" "low:-30,1.2,-30,0,0.4,0" "high:-22,16,-22,4,0,4")
 rows=()
 for view in "${views[@]}"; do
   name="${view%%:*}"; camera="${view#*:}"
   cam=(); [[ -n "$camera" ]] && cam=(--camera "$camera")
-  for kind in truth far meshes far-lod; do
+  for kind in truth reference far meshes far-lod; do
     case "$kind" in
-      truth) extra=(--lod0) ;; far) extra=(--far-radius "$radius") ;; meshes) extra=() ;;
+      truth) extra=(--lod0) ;; reference) extra=(--far-radius "$radius" --far-lod0) ;;
+      far) extra=(--far-radius "$radius") ;; meshes) extra=() ;;
       far-lod) extra=(--far-radius "$radius" --debug-lod) ;;
     esac
     "$meadow" render "$scene" --preset "$preset" --size "$size" "${cam[@]}" "${extra[@]}" \
@@ -25,5 +27,6 @@ for view in "${views[@]}"; do
     rows+=("$out/$name-$kind.png")
   done
 done
-oiiotool "${rows[@]}" --mosaic 4x3 -o "$out/sheet.png"
-echo "$out/sheet.png (columns: truth, far field, LOD meshes, far field in the LOD view; rows: default, low, high)"
+oiiotool "${rows[@]}" --mosaic 5x3 -o "$out/sheet.png"
+echo "$out/sheet.png (columns: truth, the far field's reference, far field, LOD meshes, far field in the LOD view;" \
+  "rows: default, low, high)"

@@ -100,7 +100,11 @@ void main() {
             append(first + lod, index);
         if (fadeLod != lod && !farFade)
             append(first + fadeLod, index | kLodFadeEntryBit);
-        if (far || farFade)
+        if ((far || farFade) && (frame.motion.w & kFrameFarAsLod0) != 0u) {
+            // The far field's reference: the instance at LOD 0 in its place, marked for the LOD view.
+            append(first, (farFade ? index | kLodFadeEntryBit : index) | kLodFarMeshEntryBit);
+            atomicAdd(stats.farInstances, 1u);
+        } else if (far || farFade)
             appendFar(farFade ? index | kLodFadeEntryBit : index, clumps[inst.mesh], scale, frame.lodScreen.x / dist);
     }
 }

@@ -41,8 +41,22 @@ vec3 unpackOctahedralNormal(uint packed) {
     return normalize(n);
 }
 
-// The far field's colour in the LOD view (instance.frag's LOD colours are red to purple).
-const vec3 kFarDebugColor = vec3(0.05, 0.9, 0.85);
+// The instance's coverage gain (far_splat.h): its clump's table at the instance's size (the square
+// root of its surface in pixels, at its base's depth) and the eye's elevation above it, bilinear.
+float coverageGain(GpuClump clump, float area, vec3 base) {
+    float w = max((frame.viewProj * vec4(base, 1.0)).w, 1e-3);
+    float size = sqrt(area) * frame.lodScreen.x / w;
+    vec3 toEye = frame.cameraPosition.xyz - base;
+    float sinElevation = clamp(toEye.y / max(length(toEye), 1e-6), 0.0, 1.0);
+    float s = clamp(log2(max(size, 1e-6) / kFarGainFirstSize), 0.0, float(kFarGainSizes - 1u));
+    float e = asin(sinElevation) / (0.5 * kPi) * float(kFarGainElevations - 1u);
+    uint s0 = uint(s), e0 = min(uint(e), kFarGainElevations - 1u);
+    uint s1 = min(s0 + 1u, kFarGainSizes - 1u), e1 = min(e0 + 1u, kFarGainElevations - 1u);
+    float fs = s - float(s0), fe = e - float(e0);
+    float g0 = mix(clump.farGain[s0][e0], clump.farGain[s0][e1], fe);
+    float g1 = mix(clump.farGain[s1][e0], clump.farGain[s1][e1], fe);
+    return mix(g0, g1, fs);
+}
 
 void main() {
     uint total = farDispatch.count;
@@ -51,7 +65,7 @@ void main() {
         uvec2 listed = farList[item];
         uint entry = listed.x;
         uint count = listed.y;
-        GpuDrawInstance inst = drawInstances[entry & ~kLodFadeEntryBit];
+        GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
         bool isFadeLod = (entry & kLodFadeEntryBit) != 0u;
         float fade = inst.pose.w;
         GpuClump clump = clumps[inst.offsets.w >> 16u];
@@ -62,7 +76,9 @@ void main() {
         float scale = abs(inst.positionScale.w);
         bool blending = inst.pose.z > 0.0;
         // Each drawn sample stands for an equal share of the surface (stochastic pruning).
-        float areaPerSample = uintBitsToFloat(clump.far.z) * scale * scale / float(count);
+        float area = uintBitsToFloat(clump.far.z) * scale * scale;
+        float areaPerSample = area / float(count);
+        float gain = coverageGain(clump, area, inst.positionScale.xyz);
         for (uint k = gl_LocalInvocationID.x; k < count; k += kFarGroupSize) {
             GpuFarSample farSample = farSamples[clump.far.x + k];
             GpuLodVertex v = lodVertices[farSample.data.w];
@@ -94,8 +110,8 @@ void main() {
             float cosine = dot(yaw * n, toEye) / max(length(toEye), 1e-6);
             if (cosine < 0.0 && clump.far.w != 0u)
                 continue; // the far side of a closed surface: hidden by its near side
-            float footprint = farSampleFootprint(areaPerSample, frame.lodScreen.x / clip.w, cosine);
-            if (footprint < 1.0 && farSampleRandom(entry & ~kLodFadeEntryBit, k) >= footprint)
+            float footprint = farSampleFootprint(areaPerSample, frame.lodScreen.x / clip.w, cosine) * gain;
+            if (footprint < 1.0 && farSampleRandom(entry & kLodEntryIndexMask, k) >= footprint)
                 continue;
             uint side = farSplatSide(footprint);
             vec2 pixel = (ndc.xy * 0.5 + 0.5) * vec2(size);
@@ -122,7 +138,7 @@ void main() {
             vec3 albedo = unpackRgb9e5(farSample.data.y);
             vec3 radiance = albedo * max(irradiance, 0.0) / kPi;
             if (frame.motion.z == kDebugViewLod)
-                radiance = kFarDebugColor * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
+                radiance = kLodViewColors[kLodFar] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
             uint64_t word = packUint2x32(uvec2(packRgb9e5(radiance.r, radiance.g, radiance.b), farDepthKey(ndc.z)));
 
             for (uint j = 0u; j < side; ++j)

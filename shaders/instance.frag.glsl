@@ -21,8 +21,6 @@ layout(location = 7) flat in uint inIsFadeLod;
 layout(location = 8) flat in uint inLod;
 layout(location = 0) out vec4 outColor;
 
-const vec3 kLodColors[5] = vec3[5](vec3(0.9, 0.15, 0.1), vec3(0.95, 0.75, 0.1), vec3(0.2, 0.8, 0.2),
-                                   vec3(0.1, 0.6, 0.95), vec3(0.7, 0.3, 0.9));
 
 void main() {
     // A crossfading instance draws in two LODs with complementary dither masks (lod_select.h).
@@ -36,6 +34,6 @@ void main() {
     vec3 radiance = texel.rgb * (front ? inFront : inBack);
     // LOD colours at a fixed display brightness (exposure divided out), the sheet's far side darker.
     if (frame.motion.z == kDebugViewLod)
-        radiance = kLodColors[min(inLod, 4u)] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
+        radiance = kLodViewColors[min(inLod, kLodFar)] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
     outColor = vec4(radiance, 1.0);
 }

@@ -35,13 +35,13 @@ layout(location = 8) flat out uint outLod;
 
 void main() {
     uint entry = visible[gl_InstanceIndex];
-    GpuDrawInstance inst = drawInstances[entry & ~kLodFadeEntryBit];
+    GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
     outFade = inst.pose.w;
     outIsFadeLod = (entry & kLodFadeEntryBit) != 0u ? 1u : 0u;
 
     GpuLodVertex v = lodVertices[gl_VertexIndex];
     uint rank = v.motion.w & 0xffffu;
-    outLod = v.motion.w >> 16u;
+    outLod = (entry & kLodFarMeshEntryBit) != 0u ? kLodFar : v.motion.w >> 16u;
 
     // x̄ + U q, q blended across a graph jump (motion_step.h): the old path's weight fades from 1.
     // (Vertex shading is lavapipe's single-threaded stage: loads are what it pays for, so the old

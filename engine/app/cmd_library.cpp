@@ -44,11 +44,20 @@ nlohmann::json graphAdaptations(const MotionGraph& g) {
 }
 
 // The far field's surface samples of a clump or rock (library/far_samples.h): how many, the
-// area they cover (m^2, one side) and their bytes in the FARS section.
+// area they cover (m^2, one side), their coverage gains (rows of sizes, columns of elevations:
+// far_splat.h) and their bytes in the FARS section.
 nlohmann::json farSamplesJson(const FarSamples& far) {
+    nlohmann::json gain = nlohmann::json::array();
+    for (uint32_t size = 0; size < gpu::kFarGainSizes; ++size) {
+        nlohmann::json row = nlohmann::json::array();
+        for (uint32_t elevation = 0; elevation < gpu::kFarGainElevations; ++elevation)
+            row.push_back(far.gain[size * gpu::kFarGainElevations + elevation]);
+        gain.push_back(row);
+    }
     return {{"samples", far.samples.size()},
             {"area", far.area},
-            {"bytes", 8 + far.samples.size() * size_t(kFarSampleBytes)}};
+            {"coverageGain", gain},
+            {"bytes", 8 + far.gain.size() * 4 + far.samples.size() * size_t(kFarSampleBytes)}};
 }
 
 } // namespace

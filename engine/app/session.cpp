@@ -20,11 +20,15 @@ const char* const kFieldOptionsHelp =
                         crossfade as the LODs (default 0: off)
   --lod0                every clump at full detail (LOD 0), no far field: the reference the
                         levels of detail and the far field approximate
+  --far-lod0            with --far-radius: the clumps the far field would take are drawn as
+                        LOD 0 meshes instead, everything else as with the far field (the far
+                        field's own reference); --debug-lod shows them in the far field's colour
 )";
 
 void addFieldOptions(CommandSpec& spec) {
     spec.valueOptions.insert("--far-radius");
     spec.switchOptions.insert("--lod0");
+    spec.switchOptions.insert("--far-lod0");
 }
 
 FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
@@ -35,11 +39,16 @@ FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
         throw Error("meadow " + args.command +
                     ": --lod0 draws every clump at full detail, without a far field: "
                     "leave out --far-radius");
+    options.farLod0 = args.has("--far-lod0");
+    if (options.farLod0 && !(options.farRadius > 0.0f))
+        throw Error("meadow " + args.command +
+                    ": --far-lod0 draws the far field's clumps as LOD 0 meshes: it needs --far-radius PX");
     return options;
 }
 
 void applyFieldOptions(const FieldOptions& options, std::vector<FieldClump>& clumps, FieldScenery& scenery) {
     scenery.lod.farRadius = options.farRadius;
+    scenery.farAsLod0 = options.farLod0;
     if (options.lod0) {
         scenery.lodCount = 1;
         for (FieldClump& clump : clumps)

@@ -68,6 +68,7 @@ std::vector<FieldClump> fieldClumps(const Library& library) {
         }
         clump.far = source.far.samples;
         clump.farArea = source.far.area;
+        clump.farGain = source.far.gain;
         clumps.push_back(std::move(clump));
     }
     // Rocks: static, lit by their baked transfer (no gradient), turned to any yaw (8 light bins),
@@ -95,6 +96,7 @@ std::vector<FieldClump> fieldClumps(const Library& library) {
         }
         clump.far = rock.far.samples;
         clump.farArea = rock.far.area;
+        clump.farGain = rock.far.gain;
         clump.farClosed = true;
         clumps.push_back(std::move(clump));
     }

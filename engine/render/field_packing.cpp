@@ -135,6 +135,16 @@ void packFar(const FieldClump& clump, size_t clumpIndex, uint32_t lastLodBase, F
     uint32_t areaBits;
     std::memcpy(&areaBits, &clump.farArea, sizeof areaBits);
     g.far = gpu::uvec4(first, uint32_t(clump.far.size()), areaBits, clump.farClosed ? 1u : 0u);
+    for (uint32_t size = 0; size < gpu::kFarGainSizes; ++size) {
+        float* row = &g.farGain[size].x;
+        for (uint32_t elevation = 0; elevation < gpu::kFarGainElevations; ++elevation) {
+            const float gain = clump.farGain[size * gpu::kFarGainElevations + elevation];
+            if (!(gain > 0.0f && std::isfinite(gain)))
+                throw Error("field clump " + std::to_string(clumpIndex) + ": its far-field coverage gain is " +
+                            std::to_string(gain));
+            row[elevation] = gain;
+        }
+    }
 }
 
 // The clump's transfer (and its ground grid's) into transfer, and where the light pass writes

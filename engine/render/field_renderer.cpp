@@ -241,6 +241,7 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
     r.meshCount = r.clumpCount * r.lodCount;
     r.lodParams = scenery.lod;
     r.farDensity = scenery.farDensity;
+    r.farAsLod0 = scenery.farAsLod0;
     r.farField = scenery.lod.farRadius > 0.0f;
     r.skyDay = scenery.sky;
     createPipelines(ctx, r, scenery);
@@ -317,7 +318,8 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
     uint32_t steps = 0;
     if (r.lastTick >= 0 && tick > r.lastTick)
         steps = uint32_t(std::min<int64_t>(tick - r.lastTick, gpu::kMaxMotionStepsPerFrame));
-    f.motion = gpu::uvec4(uint32_t(tick - int64_t(steps) + 1), steps, state.debugView, 0u);
+    f.motion = gpu::uvec4(uint32_t(tick - int64_t(steps) + 1), steps, state.debugView,
+                          far && r.farAsLod0 ? gpu::kFrameFarAsLod0 : 0u);
     f.counts.z = uint32_t(tick);
 
     // Sky: the two frames of the day around the hour; the sun from them; exposure from the

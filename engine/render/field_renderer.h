@@ -12,6 +12,8 @@
 // GPU timestamps bracket "animate", "cull", "light", "draw", "far" (with a far field) and "tonemap".
 #pragma once
 
+#include <array>
+
 #include "draw_instance.h"
 #include "gpu_types.h"
 #include "library/far_samples.h"
@@ -67,6 +69,8 @@ struct FieldClump {
     std::vector<FarSample> far;
     float farArea = 0.0f;
     bool farClosed = false; // a closed surface (rocks): samples facing away from the camera are hidden
+    // The coverage gains on the samples' footprints (FarSamples::gain, far_splat.h); 1 where unmeasured.
+    std::array<float, gpu::kFarGainSizes* gpu::kFarGainElevations> farGain = FarSamples{}.gain;
 };
 
 // A static clump of one mesh: every LOD the whole mesh, no motion, unshadowed light.
@@ -80,8 +84,10 @@ struct FieldScenery {
     // lodSelect; with 1, every instance draws its clump's one mesh.
     uint32_t lodCount = 1;
     gpu::GpuLodParams lod{}; // lod.farRadius > 0: the far field takes over below it (every clump needs samples)
-    float farDensity = 2.0f; // far-field samples per pixel of projected surface (far_splat.h)
-    sky::SkyDay sky;         // SH order 3; at least one frame
+    float farDensity = gpu::kFarDefaultDensity; // far-field samples per pixel of projected surface (far_splat.h)
+    // The far field's clumps drawn as LOD 0 meshes instead of splats (its reference: --far-lod0).
+    bool farAsLod0 = false;
+    sky::SkyDay sky; // SH order 3; at least one frame
 };
 
 // The wind at run time, in wind levels of the motion graph (0 calm .. levels - 1): waves that
@@ -160,7 +166,8 @@ struct FieldRenderer {
     uint32_t meshCount = 0; // draw buckets: clumps x lodCount, clump-major
     uint32_t lodCount = 1;
     gpu::GpuLodParams lodParams{};
-    float farDensity = 2.0f;
+    float farDensity = gpu::kFarDefaultDensity;
+    bool farAsLod0 = false;
     bool farField = false;               // lodParams.farRadius > 0: the splat and resolve passes run
     std::vector<uint32_t> meshTriangles; // per draw bucket
     std::vector<uint32_t> drawCapacity;  // per draw bucket: the instances its visible range holds

@@ -2,6 +2,7 @@
 // (gpu_types.h, draw_instance.h) matches the std140/std430 layout the shaders see: every member's
 // offset and every size. A failing assert means a member that the two languages lay out
 // differently. (GpuLodParams and GpuLodChoice of lod_select.h live in registers only.)
+#include "far_splat.h"
 #include "gpu_types.h"
 // After gpu_types.h and motion_step.h, as draw_instance.h asks.
 #include "draw_instance.h"
@@ -43,7 +44,9 @@ static_assert(offsetof(GpuClump, yawBins) == 64);
 static_assert(offsetof(GpuClump, ground) == 80);
 static_assert(offsetof(GpuClump, albedo) == 96);
 static_assert(offsetof(GpuClump, far) == 112);
-static_assert(sizeof(GpuClump) == 128);
+static_assert(offsetof(GpuClump, farGain) == 128);
+static_assert(sizeof(GpuClump) == 208);
+static_assert(kFarGainSizes == 5 && kFarGainElevations == 4, "GpuClump::farGain holds 5 sizes of 4 elevations");
 static_assert(offsetof(GpuFarSample, position) == 0);
 static_assert(offsetof(GpuFarSample, data) == 16);
 static_assert(sizeof(GpuFarSample) == 32);

@@ -5,6 +5,9 @@
 // sample's footprint to area / n. pipeline/far_samples.h builds them; the FARS section stores them.
 #pragma once
 
+#include "far_splat.h"
+
+#include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
@@ -31,10 +34,17 @@ struct FarSamples {
     std::vector<FarSample> samples;
     // m^2: the surface the samples cover (one side); each of n drawn samples stands for area / n.
     float area = 0.0f;
+    // The coverage gain on the samples' footprints (far_splat.h), size-major: gain[size *
+    // kFarGainElevations + elevation]; positive and finite; 1 until measured (farCoverageGains).
+    std::array<float, gpu::kFarGainSizes* gpu::kFarGainElevations> gain = [] {
+        std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> ones;
+        ones.fill(1.0f);
+        return ones;
+    }();
 };
 
 // Bytes of one sample in the FARS section: position (3 x f32), normal, albedo, vertex, lightVertex
-// (u32 each).
+// (u32 each). Each clump's or rock's entry also holds its area, gain table and count.
 inline constexpr uint32_t kFarSampleBytes = 28;
 
 // Octahedral normal encoding (Meyer et al. 2010), the same in C++ and GLSL:

@@ -7,10 +7,12 @@
 namespace meadow {
 namespace {
 
-// Per clump or rock: f32 area, u32 count, then count x {f32 x, y, z; u32 normal, albedo, vertex,
-// lightVertex}.
+// Per clump or rock: f32 area, the gain table (kFarGainSizes x kFarGainElevations f32), u32 count,
+// then count x {f32 x, y, z; u32 normal, albedo, vertex, lightVertex}.
 void writeFarSamplesOf(ByteWriter& w, const FarSamples& far) {
     w.f32(far.area);
+    for (float g : far.gain)
+        w.f32(g);
     w.u32(uint32_t(far.samples.size()));
     for (const FarSample& s : far.samples) {
         w.f32(s.position.x);
@@ -35,6 +37,11 @@ FarSamples readFarSamplesOf(ByteReader& r, size_t vertices, const std::vector<ui
     far.area = r.f32();
     if (!std::isfinite(far.area) || far.area < 0.0f)
         throw fail("its far-field samples cover a non-finite or negative area");
+    for (float& g : far.gain) {
+        g = r.f32();
+        if (!std::isfinite(g) || !(g > 0.0f))
+            throw fail("its far-field coverage gain " + std::to_string(g) + " is not a positive finite number");
+    }
     const uint32_t count = r.u32();
     if (size_t(count) * kFarSampleBytes > r.remaining())
         throw fail(std::to_string(count) + " far-field samples do not fit in the section");

@@ -94,6 +94,7 @@ FarSurface farSurfaceOfRock(const LibraryRock& rock) {
     s.farVertices = rock.lods[kLodCount - 1].vertices;
     s.constantAlbedo =
         packRgba8(linearToSrgb(kRockAlbedo.r), linearToSrgb(kRockAlbedo.g), linearToSrgb(kRockAlbedo.b), 255);
+    s.closed = true;
     return s;
 }
 
@@ -187,6 +188,198 @@ FarSamples buildFarSamples(const FarSurface& surface, uint32_t count, uint64_t s
     return far;
 }
 
+namespace {
+
+// One view of the calibration: the surface turned by `azimuth` about +y, seen along -z tilted
+// down by `elevation`, at `pixelsPerMetre`, shifted by `offset` pixels; pixels in a square grid of
+// side `grid` centred on the origin.
+struct CalibrationView {
+    float cosAzimuth, sinAzimuth, cosElevation, sinElevation;
+    float pixelsPerMetre;
+    glm::vec2 offset;
+    int grid;
+
+    glm::vec3 turn(glm::vec3 v) const {
+        const glm::vec3 a(cosAzimuth * v.x + sinAzimuth * v.z, v.y, -sinAzimuth * v.x + cosAzimuth * v.z);
+        // Rows of the view: right (1, 0, 0), up (0, cos e, -sin e), towards the eye (0, sin e, cos e).
+        return glm::vec3(a.x, cosElevation * a.y - sinElevation * a.z, sinElevation * a.y + cosElevation * a.z);
+    }
+    // Continuous pixel coordinates (y down, as on screen) of a clump-space point.
+    glm::vec2 pixel(glm::vec3 p) const {
+        const glm::vec3 v = turn(p);
+        return glm::vec2(v.x, -v.y) * pixelsPerMetre + offset + glm::vec2(0.5f * float(grid));
+    }
+    // Whether the ground the clump stands on (the plane y = 0) is nearer than a point `towardEye`
+    // (its view coordinate towards the eye) along the ray through the centre of pixel row `row`:
+    // the mesh depth the splat pass tests against holds the ground there. (A sample near the base
+    // loses the pixels whose centre sees the ground in front of it; a mesh's fragment never does, as
+    // it lies on the ray.)
+    bool groundHides(int row, float towardEye) const {
+        const float up = -((float(row) + 0.5f) - offset.y - 0.5f * float(grid)) / pixelsPerMetre;
+        if (sinElevation < 1e-6f)
+            return up < 0.0f; // seen level: below the ground line is ground
+        return -cosElevation * up / sinElevation >= towardEye;
+    }
+};
+
+bool texelOpaque(const RgbaImage& atlas, glm::vec2 uv) {
+    const int tx = std::clamp(int(std::floor(uv.x * float(atlas.width))), 0, int(atlas.width) - 1);
+    const int ty = std::clamp(int(std::floor(uv.y * float(atlas.height))), 0, int(atlas.height) - 1);
+    return atlas.rgba[(size_t(ty) * atlas.width + size_t(tx)) * 4 + 3] >= 128;
+}
+
+// LOD 0's covered pixels in a view: pixel centres inside a triangle, alpha-tested.
+size_t rasterisedCoverage(const FarSurface& surface, const CalibrationView& view) {
+    std::vector<uint8_t> covered(size_t(view.grid) * size_t(view.grid), 0);
+    for (size_t t = 0; t + 2 < surface.indices.size(); t += 3) {
+        const uint32_t i0 = surface.indices[t], i1 = surface.indices[t + 1], i2 = surface.indices[t + 2];
+        const glm::vec2 a = view.pixel(surface.positions[i0]), b = view.pixel(surface.positions[i1]),
+                        c = view.pixel(surface.positions[i2]);
+        const float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+        if (!(std::abs(area) > 1e-12f))
+            continue; // edge-on: covers no pixel centre
+        const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, c.x}) - 0.5f)));
+        const int x1 = std::min(view.grid - 1, int(std::ceil(std::max({a.x, b.x, c.x}) - 0.5f)));
+        const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, c.y}) - 0.5f)));
+        const int y1 = std::min(view.grid - 1, int(std::ceil(std::max({a.y, b.y, c.y}) - 0.5f)));
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                uint8_t& cell = covered[size_t(y) * view.grid + size_t(x)];
+                if (cell)
+                    continue;
+                const glm::vec2 q(float(x) + 0.5f, float(y) + 0.5f);
+                const float w0 = ((b.x - q.x) * (c.y - q.y) - (b.y - q.y) * (c.x - q.x)) / area;
+                const float w1 = ((c.x - q.x) * (a.y - q.y) - (c.y - q.y) * (a.x - q.x)) / area;
+                const float w2 = 1.0f - w0 - w1;
+                if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f)
+                    continue;
+                if (surface.atlas) {
+                    const glm::vec2 uv = w0 * surface.uvs[i0] + w1 * surface.uvs[i1] + w2 * surface.uvs[i2];
+                    if (!texelOpaque(*surface.atlas, uv))
+                        continue;
+                }
+                cell = 1;
+            }
+    }
+    size_t count = 0;
+    for (uint8_t cell : covered)
+        count += cell;
+    return count;
+}
+
+// A splat of the view: its pixel (the square's corner as far_splat.comp places it) and footprint.
+struct CalibrationSplat {
+    int x, y;
+    float footprint;
+    float towardEye; // the sample's view coordinate towards the eye (CalibrationView::groundHides)
+};
+
+// The splats' expected covered pixels at `gain` (far_splat.comp's keep test and square).
+double splatCoverage(const std::vector<CalibrationSplat>& splats, const CalibrationView& view, float gain,
+                     std::vector<double>& logMiss, std::vector<uint8_t>& certain) {
+    const int grid = view.grid;
+    std::fill(logMiss.begin(), logMiss.end(), 0.0);
+    std::fill(certain.begin(), certain.end(), uint8_t(0));
+    for (const CalibrationSplat& s : splats) {
+        const float f = s.footprint * gain;
+        const int side = int(gpu::farSplatSide(f));
+        const float keep = std::min(f, 1.0f);
+        const int cx = s.x - (side - 1) / 2, cy = s.y - (side - 1) / 2;
+        for (int j = 0; j < side; ++j)
+            for (int i = 0; i < side; ++i) {
+                const int x = cx + i, y = cy + j;
+                if (x < 0 || y < 0 || x >= grid || y >= grid || view.groundHides(y, s.towardEye))
+                    continue;
+                const size_t cell = size_t(y) * grid + size_t(x);
+                if (keep >= 1.0f)
+                    certain[cell] = 1;
+                else
+                    logMiss[cell] += std::log1p(-double(keep));
+            }
+    }
+    double covered = 0.0;
+    for (size_t cell = 0; cell < logMiss.size(); ++cell)
+        covered += certain[cell] ? 1.0 : 1.0 - std::exp(logMiss[cell]);
+    return covered;
+}
+
+} // namespace
+
+std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains(const FarSurface& surface,
+                                                                                 const FarSamples& far) {
+    std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> gains;
+    gains.fill(1.0f);
+    if (far.samples.empty() || !(far.area > 0.0f))
+        return gains;
+    float reach = 0.0f; // the surface's farthest point from the clump's origin
+    for (const glm::vec3& p : surface.positions)
+        reach = std::max(reach, glm::length(p));
+    constexpr int kAzimuths = 8;
+    constexpr float kPi = 3.14159265358979f;
+    const float side = std::sqrt(far.area);
+    for (uint32_t si = 0; si < gpu::kFarGainSizes; ++si) {
+        const float size = gpu::kFarGainFirstSize * float(1u << si);
+        const float pixelsPerMetre = size / side;
+        const uint32_t count =
+            gpu::farSampleCount(far.area, pixelsPerMetre, gpu::kFarDefaultDensity, uint32_t(far.samples.size()));
+        const float areaPerSample = far.area / float(count);
+        const int grid = int(std::ceil(2.0f * reach * pixelsPerMetre)) + 12;
+        for (uint32_t ei = 0; ei < gpu::kFarGainElevations; ++ei) {
+            const float elevation = float(ei) * (0.5f * kPi / float(gpu::kFarGainElevations - 1));
+            double truth = 0.0;
+            std::vector<std::pair<CalibrationView, std::vector<CalibrationSplat>>> views;
+            for (int a = 0; a < kAzimuths; ++a) {
+                const float azimuth = (float(a) + 0.5f) * (2.0f * kPi / float(kAzimuths));
+                // Sub-pixel offsets from the plastic sequence, so the views sample the pixel grid evenly.
+                const glm::vec2 offset(std::fmod(0.5f + 0.7548776662f * float(a + 1), 1.0f),
+                                       std::fmod(0.5f + 0.5698402910f * float(a + 1), 1.0f));
+                const CalibrationView view{std::cos(azimuth),
+                                           std::sin(azimuth),
+                                           std::cos(elevation),
+                                           std::sin(elevation),
+                                           pixelsPerMetre,
+                                           offset,
+                                           grid};
+                truth += double(rasterisedCoverage(surface, view));
+                std::vector<CalibrationSplat> splats;
+                splats.reserve(count);
+                for (uint32_t k = 0; k < count; ++k) {
+                    const FarSample& sample = far.samples[k];
+                    const glm::vec3 normal = unpackOctahedral(sample.normal);
+                    const float cosine = view.turn(normal).z; // towards the eye: +z of the view
+                    if (cosine < 0.0f && surface.closed)
+                        continue;
+                    const glm::vec2 at = view.pixel(sample.position);
+                    splats.push_back({int(std::floor(at.x)), int(std::floor(at.y)),
+                                      gpu::farSampleFootprint(areaPerSample, pixelsPerMetre, cosine),
+                                      view.turn(sample.position).z});
+                }
+                views.emplace_back(view, std::move(splats));
+            }
+            std::vector<double> logMiss(size_t(grid) * size_t(grid));
+            std::vector<uint8_t> certain(logMiss.size());
+            auto coverage = [&](float gain) {
+                double sum = 0.0;
+                for (const auto& [view, splats] : views)
+                    sum += splatCoverage(splats, view, gain, logMiss, certain);
+                return sum;
+            };
+            // Bisection in log2(gain) over [-2, 3]: coverage grows with the gain.
+            float lo = -2.0f, hi = 3.0f;
+            if (coverage(std::exp2(lo)) >= truth)
+                hi = lo;
+            else if (coverage(std::exp2(hi)) <= truth)
+                lo = hi;
+            for (int step = 0; step < 24 && hi - lo > 1e-4f; ++step) {
+                const float mid = 0.5f * (lo + hi);
+                (coverage(std::exp2(mid)) < truth ? lo : hi) = mid;
+            }
+            gains[si * gpu::kFarGainElevations + ei] = std::exp2(0.5f * (lo + hi));
+        }
+    }
+    return gains;
+}
+
 uint64_t farSampleSeed(uint64_t sceneSeed, uint32_t index, bool rock) {
     return splitMix64(splitMix64(sceneSeed ^ 0x6661722d73616d70ull) + (rock ? 0x100000000ull : 0ull) + index);
 }
@@ -196,12 +389,14 @@ void buildLibraryFarSamples(Library& library, uint32_t samplesPerClump, uint64_t
     tbb::parallel_for(size_t(0), clumps + rocks, [&](size_t i) {
         if (i < clumps) {
             LibraryClump& clump = library.clumps[i];
-            clump.far = buildFarSamples(farSurfaceOfClump(clump, library.atlas), samplesPerClump,
-                                        farSampleSeed(sceneSeed, uint32_t(i), false));
+            const FarSurface surface = farSurfaceOfClump(clump, library.atlas);
+            clump.far = buildFarSamples(surface, samplesPerClump, farSampleSeed(sceneSeed, uint32_t(i), false));
+            clump.far.gain = farCoverageGains(surface, clump.far);
         } else {
             LibraryRock& rock = library.field.rocks[i - clumps];
-            rock.far = buildFarSamples(farSurfaceOfRock(rock), samplesPerClump,
-                                       farSampleSeed(sceneSeed, uint32_t(i - clumps), true));
+            const FarSurface surface = farSurfaceOfRock(rock);
+            rock.far = buildFarSamples(surface, samplesPerClump, farSampleSeed(sceneSeed, uint32_t(i - clumps), true));
+            rock.far.gain = farCoverageGains(surface, rock.far);
         }
     });
 }

@@ -22,6 +22,7 @@ struct FarSurface {
     std::vector<uint32_t> vertexBlock;     // per vertex its motion block (rod); empty: one block
     const RgbaImage* atlas = nullptr;      // albedo and alpha test at the UV; null: constantAlbedo, no test
     uint32_t constantAlbedo = 0xff000000u; // RGBA8 (FarSample::albedo) without an atlas
+    bool closed = false;                   // a closed surface (a rock): the splat pass hides samples facing away
 };
 
 // A clump's LOD 0 (its lods[0] triangles over the mean-pose mesh), its last LOD's vertices and its
@@ -42,6 +43,19 @@ FarSurface farSurfaceOfRock(const LibraryRock& rock);
 //   that block, or the nearest far vertex of all where the block has none;
 // - then a Fisher-Yates shuffle. area = LOD 0's area x accepted / drawn.
 FarSamples buildFarSamples(const FarSurface& surface, uint32_t count, uint64_t seed);
+
+// The coverage gains of far.gain (far_splat.h), measured: per size and elevation bin, the surface
+// is seen from 8 azimuths (each with its own sub-pixel offset), orthographically at that size
+// (pixels per metre = size / sqrt(far.area)), and
+//   - LOD 0 is rasterised as the mesh pass would: a pixel is covered where its centre falls in a
+//     triangle whose texel there (nearest, mip 0) has alpha >= 128;
+//   - the first farSampleCount(...) samples at kFarDefaultDensity are splatted as the splat pass
+//     does (footprint, square side, far side of closed surfaces hidden), each covering with its
+//     probability independently, and the expected covered pixels summed;
+// and the gain is the factor on every footprint, in [1/4, 8], whose expected coverage equals LOD
+// 0's over the 8 views (bisection on the monotone coverage).
+std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains(const FarSurface& surface,
+                                                                                 const FarSamples& far);
 
 // The seed of clump `index` (or of rock `index`) of a scene.
 uint64_t farSampleSeed(uint64_t sceneSeed, uint32_t index, bool rock);

@@ -12,6 +12,11 @@
 
 const float kPi = 3.14159265358979;
 
+// The LOD view's colours (--debug-lod; instance.frag, far_splat.comp): LODs 0 to 4, red to purple,
+// then the far field (kLodFar, lod_select.h), cyan. tests/support/far_compare.cpp tells them apart.
+const vec3 kLodViewColors[6] = vec3[6](vec3(0.9, 0.15, 0.1), vec3(0.95, 0.75, 0.1), vec3(0.2, 0.8, 0.2),
+                                       vec3(0.1, 0.6, 0.95), vec3(0.7, 0.3, 0.9), vec3(0.05, 0.9, 0.85));
+
 // Unshadowed irradiance on a surface of unit normal n from RGB sky SH of order 3 (sh[3 i + c],
 // light/sh.h's basis: polar axis +y, azimuth from +z towards +x): the clamped cosine's zonal
 // coefficients pi, 2 pi / 3, pi / 4 times the basis at n (Ramamoorthi and Hanrahan 2001).

@@ -147,6 +147,24 @@ MEADOW_FAR_FN uint farSplatSide(float footprint) {
     return uint(farMin(side, float(kFarMaxSplatSide)));
 }
 
+// Coverage gain (docs/ARCHITECTURE.md, The far field). Samples that each cover their pixel with
+// the probability of their footprint, independently, cover a pixel that the surface fills with
+// probability 1 - exp(-d) (d the footprints summed there), not 1: a solid leaf or rock looks
+// thinner than it is, and more so the more of the view it fills. The precompute measures, per
+// clump or rock, the gain on the footprints that makes the splats' expected coverage equal LOD 0's
+// rasterised coverage (pipeline/far_samples.h), over a table of projected sizes and view
+// elevations; the splat pass multiplies each sample's footprint by the instance's gain,
+// interpolated in that table.
+//   - size: sqrt(surface area) in pixels, kFarGainSizes bins at 2, 4, 8, ... px (log2 spaced);
+//   - elevation: of the eye above the clump's horizon, kFarGainElevations bins at 0, 30, 60, 90
+//     degrees.
+MEADOW_FAR_CONST kFarGainSizes = 5u;
+MEADOW_FAR_CONST kFarGainElevations = 4u;
+MEADOW_FAR_FCONST kFarGainFirstSize = 2.0f; // px; bin i at kFarGainFirstSize * 2^i
+// The density the gains are measured at and the run time uses by default (samples per pixel of
+// projected surface; farSampleCount).
+MEADOW_FAR_FCONST kFarDefaultDensity = 2.0f;
+
 // The random number in [0, 1) that decides whether sample `index` of far instance `instance`
 // covers its pixel: a PCG hash (Jarzynski and Olano 2020) of both, 24 bits so the float is exact.
 // The same every frame, so the far field does not shimmer.

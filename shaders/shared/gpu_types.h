@@ -46,6 +46,8 @@ MEADOW_CONST kSkyFrameHeaderFloats = 36;
 // Debug views (GpuFrame::motion.z).
 MEADOW_CONST kDebugViewNone = 0;
 MEADOW_CONST kDebugViewLod = 1;
+// GpuFrame::motion.w: the far field's instances are drawn as LOD 0 meshes, not splats (its reference).
+MEADOW_CONST kFrameFarAsLod0 = 1;
 
 // Per frame: the only data the CPU writes each frame (uniform buffer, set 0).
 struct GpuFrame {
@@ -67,7 +69,8 @@ struct GpuFrame {
     vec4 windShape; // x 1 / wavelength (1/m), y wave cycles per motion tick, z gust amplitude (levels),
                     // w gust cells per metre
     vec4 windGust;  // x gust cells travelled per motion tick, yzw unused
-    uvec4 motion;   // x the first motion tick this frame steps to, y steps this frame, z debug view, w unused
+    uvec4 motion;   // x the first motion tick this frame steps to, y steps this frame, z debug view, w flags
+                    // (kFrameFarAsLod0)
     // The sky: two frames of the library's day (SKYD) blended; light.comp projects onto it.
     uvec4 skyFrames; // x first frame, y second frame, zw unused
     vec4 skyBlend;   // x weight of the second frame, y azimuth of the simulation wind (mirror plane), zw unused
@@ -102,6 +105,7 @@ struct GpuClump {
     uvec4 far;        // the far field's surface samples: x first GpuFarSample, y samples, z their surface
                       // (m^2, float bits), w 1: a closed surface (a rock), whose samples facing away are
                       // hidden, 0: two-sided sheets
+    vec4 farGain[5];  // the far field's coverage gains (far_splat.h): [size bin], its elevation bins in xyzw
 };
 
 // One surface sample of a clump for the far field (precompute/library/far_samples.h), as the

@@ -66,6 +66,10 @@ MEADOW_LOD_FN float lodInstanceRandom(uint instance) {
 // The visible list's entry for an instance: its index, with the top bit set when the entry
 // draws the instance's fadeLod (the second draw of a crossfade).
 MEADOW_LOD_CONST kLodFadeEntryBit = 0x80000000u;
+// Set on an instance the far field takes that is drawn as a LOD 0 mesh instead (kFrameFarAsLod0): the
+// LOD view shows it in the far field's colour.
+MEADOW_LOD_CONST kLodFarMeshEntryBit = 0x40000000u;
+MEADOW_LOD_CONST kLodEntryIndexMask = 0x3fffffffu;
 
 // The continuous coordinate of a screen radius r for an instance whose random number is u in
 // [0, 1). Non-increasing in r. In [0, kLodSelectCount - 1], or [0, kLodFar] with a far field.

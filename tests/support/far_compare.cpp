@@ -1,14 +1,16 @@
-// meadow_far_compare: how well a render with the far field (or any approximation) matches the
-// truth, every clump at full detail, over the far field's region (docs/BENCHMARKS.md, The far
-// field).
+// meadow_far_compare: how well a render with the far field matches a reference over the far
+// field's region (docs/BENCHMARKS.md, The far field).
 //
-//   meadow_far_compare TRUTH TRUTH_LOD APPROX APPROX_LOD REGION_LOD [--reference REF]
+//   meadow_far_compare TRUTH TRUTH_LOD APPROX APPROX_LOD [--region LOD_VIEW]... [--reference REF]
 //                      [--max-colour C] [--coverage-ratio LO,HI] [--min-ssim S] [--ssim-margin M]
 //
 // TRUTH and APPROX are renders of one frame; the *_LOD images are the same frames in the LOD view
-// (`--debug-lod`), where every clump and rock shows a saturated colour, so plants can be told
-// from the ground; REGION_LOD is a LOD view with the far field, whose far-field colour (cyan)
-// marks the region, dilated by 2 px to take in the ground between far clumps. Over the region:
+// (`--debug-lod`), where every clump and rock shows one of six known colours (LODs 0 to 4 and the
+// far field), so plants can be told from the ground. TRUTH and TRUTH_LOD may be rendered a whole
+// number of times larger (supersampled): they are brought down by averaging. The region is every
+// pixel that shows the far field's colour in APPROX_LOD, TRUTH_LOD (the far field's clumps drawn as
+// LOD 0 meshes with --far-lod0 show it too) or any --region LOD view: where the far field is, or
+// should be. Over the region:
 //   - mean colour: linear RGB of TRUTH and APPROX, per channel, relative to the truth's
 //     (fails above C, default 0.03);
 //   - plant coverage: the share of region pixels that are plant in TRUTH_LOD and APPROX_LOD; fails
@@ -58,17 +60,79 @@ float linear(float c) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
-// The far field's colour in the LOD view (far_splat.comp's kFarDebugColor, lit and tonemapped).
-bool isFarColour(const Image& image, int x, int y) {
-    const float r = image.at(x, y, 0), g = image.at(x, y, 1), b = image.at(x, y, 2);
-    return g - r > 0.25f && b - r > 0.25f && std::abs(g - b) < 0.25f;
+// The LOD view's colours (instance.frag's kLodColors, far_splat.comp's kFarDebugColor) as linear
+// radiance at display brightness, the sheet's far side at 0.6 of it: after the tonemapper's ACES fit
+// and sRGB encoding (tonemap.comp) they are the only colours a clump or rock shows in that view (no
+// haze falls on plants). A pixel within kPlantTolerance of one of them, in every channel, is plant;
+// the ground, its haze and the sky are not. (A saturation threshold told them apart before, and
+// missed the front of LOD 0's red: (0.90, 0.50, 0.39) after the tonemapper.)
+constexpr float kLodViewColours[6][3] = {{0.9f, 0.15f, 0.1f}, {0.95f, 0.75f, 0.1f}, {0.2f, 0.8f, 0.2f},
+                                         {0.1f, 0.6f, 0.95f}, {0.7f, 0.3f, 0.9f},   {0.05f, 0.9f, 0.85f}};
+constexpr float kPlantTolerance = 0.03f;
+
+float displayed(float linearRadiance) {
+    const float x = linearRadiance;
+    const float aces = std::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+    return aces <= 0.0031308f ? aces * 12.92f : 1.055f * std::pow(aces, 1.0f / 2.4f) - 0.055f;
 }
 
-// A clump or rock in the LOD view: saturated (the ground, the haze and the sky are not).
+// Whether the pixel shows one of kLodViewColours[first .. last], either side.
+bool showsLodColour(const Image& image, int x, int y, int first, int last) {
+    for (int i = first; i <= last; ++i)
+        for (const float side : {1.0f, 0.6f}) {
+            bool near = true;
+            for (int c = 0; c < 3; ++c)
+                near = near && std::abs(image.at(x, y, c) - displayed(kLodViewColours[i][c] * side)) <= kPlantTolerance;
+            if (near)
+                return true;
+        }
+    return false;
+}
+
 bool isPlant(const Image& image, int x, int y) {
-    const float r = image.at(x, y, 0), g = image.at(x, y, 1), b = image.at(x, y, 2);
-    const float hi = std::max({r, g, b}), lo = std::min({r, g, b});
-    return hi > 0.08f && (hi - lo) / hi > 0.62f;
+    return showsLodColour(image, x, y, 0, 5);
+}
+
+// The far field (far_splat.comp's kFarDebugColor).
+bool isFarColour(const Image& image, int x, int y) {
+    return showsLodColour(image, x, y, 5, 5);
+}
+
+float encode(float c) {
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+// A supersampled render brought down by `k`: each k x k block's mean linear radiance, sRGB-encoded.
+Image reduce(const Image& image, int k) {
+    Image small;
+    small.width = image.width / k;
+    small.height = image.height / k;
+    small.rgb.resize(size_t(small.width) * size_t(small.height) * 3);
+    for (int y = 0; y < small.height; ++y)
+        for (int x = 0; x < small.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                double sum = 0.0;
+                for (int dy = 0; dy < k; ++dy)
+                    for (int dx = 0; dx < k; ++dx)
+                        sum += linear(image.at(k * x + dx, k * y + dy, c));
+                small.rgb[3 * (size_t(y) * small.width + x) + size_t(c)] = encode(float(sum / double(k * k)));
+            }
+    return small;
+}
+
+// Per pixel of the image brought down by `k`, the share of its k x k block that is plant.
+std::vector<float> plantShare(const Image& lodView, int k) {
+    const int w = lodView.width / k, h = lodView.height / k;
+    std::vector<float> share(size_t(w) * size_t(h));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            int plants = 0;
+            for (int dy = 0; dy < k; ++dy)
+                for (int dx = 0; dx < k; ++dx)
+                    plants += isPlant(lodView, k * x + dx, k * y + dy);
+            share[size_t(y) * w + x] = float(plants) / float(k * k);
+        }
+    return share;
 }
 
 float luma(const Image& image, int x, int y) {
@@ -106,7 +170,7 @@ double ssim(const Image& a, const Image& b, const std::vector<uint8_t>& region) 
 }
 
 int usage() {
-    std::fputs("usage: meadow_far_compare TRUTH TRUTH_LOD APPROX APPROX_LOD REGION_LOD [--reference REF]\n"
+    std::fputs("usage: meadow_far_compare TRUTH TRUTH_LOD APPROX APPROX_LOD [--region LOD_VIEW]... [--reference REF]\n"
                "                          [--max-colour C] [--coverage-ratio LO,HI] [--min-ssim S] [--ssim-margin M]\n",
                stderr);
     return 2;
@@ -115,16 +179,19 @@ int usage() {
 } // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 6)
+    if (argc < 5)
         return usage();
     double maxColour = 0.03, coverageLow = 0.95, coverageHigh = 1.05, minSsim = 0.0, margin = 0.0;
     const char* referencePath = nullptr;
-    for (int i = 6; i < argc; i += 2) {
+    std::vector<const char*> regionPaths;
+    for (int i = 5; i < argc; i += 2) {
         if (i + 1 >= argc)
             return usage();
         const std::string option = argv[i];
         if (option == "--reference")
             referencePath = argv[i + 1];
+        else if (option == "--region")
+            regionPaths.push_back(argv[i + 1]);
         else if (option == "--max-colour")
             maxColour = std::atof(argv[i + 1]);
         else if (option == "--coverage-ratio") {
@@ -137,37 +204,54 @@ int main(int argc, char** argv) {
         else
             return usage();
     }
-    Image truth, truthLod, approx, approxLod, regionLod, reference;
-    if (!read(argv[1], truth) || !read(argv[2], truthLod) || !read(argv[3], approx) || !read(argv[4], approxLod) ||
-        !read(argv[5], regionLod) || (referencePath && !read(referencePath, reference)))
+    Image truthFull, truthLod, approx, approxLod, reference;
+    if (!read(argv[1], truthFull) || !read(argv[2], truthLod) || !read(argv[3], approx) || !read(argv[4], approxLod) ||
+        (referencePath && !read(referencePath, reference)))
         return 1;
-    for (const Image* image : {&truthLod, &approx, &approxLod, &regionLod})
-        if (image->width != truth.width || image->height != truth.height) {
-            std::fprintf(stderr, "far_compare: the images differ in size\n");
+    std::vector<Image> regionLods(regionPaths.size());
+    for (size_t i = 0; i < regionPaths.size(); ++i)
+        if (!read(regionPaths[i], regionLods[i]))
             return 1;
-        }
-    if (referencePath && (reference.width != truth.width || reference.height != truth.height)) {
-        std::fprintf(stderr, "far_compare: the reference differs in size\n");
+    // The truth may be rendered k times larger (supersampled): it is brought down to the size of the
+    // others, its colour averaged and its coverage the share of plant in each block.
+    const int k = approx.width > 0 ? truthFull.width / approx.width : 0;
+    if (k < 1 || truthFull.width != k * approx.width || truthFull.height != k * approx.height ||
+        truthLod.width != truthFull.width || truthLod.height != truthFull.height) {
+        std::fprintf(stderr, "far_compare: the truth and its LOD view must be the approximation's size or a whole "
+                             "multiple of it\n");
         return 1;
     }
+    bool sameSize = approxLod.width == approx.width && approxLod.height == approx.height;
+    for (const Image& image : regionLods)
+        sameSize = sameSize && image.width == approx.width && image.height == approx.height;
+    if (!sameSize || (referencePath && (reference.width != approx.width || reference.height != approx.height))) {
+        std::fprintf(stderr, "far_compare: the images differ in size\n");
+        return 1;
+    }
+    const Image truth = k == 1 ? truthFull : reduce(truthFull, k);
+    const std::vector<float> truthPlant = plantShare(truthLod, k), approxPlant = plantShare(approxLod, 1);
 
-    // The region: far-field pixels, dilated by 2 px.
-    const int w = truth.width, h = truth.height;
+    // The region: where any of the LOD views shows the far field (the truth's: anywhere in the block).
+    const int w = approx.width, h = approx.height;
     std::vector<uint8_t> region(size_t(w) * h, 0);
     size_t farPixels = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            if (!isFarColour(regionLod, x, y))
-                continue;
-            ++farPixels;
-            for (int dy = -2; dy <= 2; ++dy)
-                for (int dx = -2; dx <= 2; ++dx)
-                    if (x + dx >= 0 && y + dy >= 0 && x + dx < w && y + dy < h)
-                        region[size_t(y + dy) * w + size_t(x + dx)] = 1;
+            bool far = isFarColour(approxLod, x, y);
+            for (const Image& image : regionLods)
+                far = far || isFarColour(image, x, y);
+            for (int dy = 0; dy < k && !far; ++dy)
+                for (int dx = 0; dx < k && !far; ++dx)
+                    far = isFarColour(truthLod, k * x + dx, k * y + dy);
+            region[size_t(y) * w + x] = far;
+            farPixels += isFarColour(approxLod, x, y);
         }
     size_t regionPixels = 0;
     double meanTruth[3] = {0, 0, 0}, meanApprox[3] = {0, 0, 0};
-    size_t plantTruth = 0, plantApprox = 0;
+    double plantTruth = 0.0, plantApprox = 0.0;
+    // Over the pixels that are plant in both: the colour of the plants alone, without coverage.
+    double bothTruth[3] = {0, 0, 0}, bothApprox[3] = {0, 0, 0};
+    size_t bothPixels = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             if (!region[size_t(y) * w + x])
@@ -177,12 +261,24 @@ int main(int argc, char** argv) {
                 meanTruth[c] += linear(truth.at(x, y, c));
                 meanApprox[c] += linear(approx.at(x, y, c));
             }
-            plantTruth += isPlant(truthLod, x, y);
-            plantApprox += isPlant(approxLod, x, y);
+            plantTruth += truthPlant[size_t(y) * w + x];
+            plantApprox += approxPlant[size_t(y) * w + x];
+            if (truthPlant[size_t(y) * w + x] == 1.0f && approxPlant[size_t(y) * w + x] == 1.0f) {
+                ++bothPixels;
+                for (int c = 0; c < 3; ++c) {
+                    bothTruth[c] += linear(truth.at(x, y, c));
+                    bothApprox[c] += linear(approx.at(x, y, c));
+                }
+            }
         }
     if (farPixels < 50) {
         std::fprintf(stderr, "far_compare: the far field covers %zu pixels of %s: too few to compare\n", farPixels,
-                     argv[5]);
+                     argv[4]);
+        return 1;
+    }
+    if (plantTruth == 0.0 || plantApprox == 0.0) {
+        std::fprintf(stderr, "far_compare: no plant pixel in the region of %s: not a LOD view of this build?\n",
+                     plantTruth == 0 ? argv[2] : argv[4]);
         return 1;
     }
     double colourError = 0.0;
@@ -191,8 +287,8 @@ int main(int argc, char** argv) {
         meanApprox[c] /= double(regionPixels);
         colourError = std::max(colourError, std::abs(meanApprox[c] - meanTruth[c]) / std::max(meanTruth[c], 1e-4));
     }
-    const double coverageTruth = double(plantTruth) / double(regionPixels);
-    const double coverageApprox = double(plantApprox) / double(regionPixels);
+    const double coverageTruth = plantTruth / double(regionPixels);
+    const double coverageApprox = plantApprox / double(regionPixels);
     const double coverageRatio = coverageApprox / std::max(coverageTruth, 1e-4);
     const double s = ssim(approx, truth, region);
     const double sReference = referencePath ? ssim(reference, truth, region) : 0.0;
@@ -205,6 +301,12 @@ int main(int argc, char** argv) {
                 coverageLow, coverageHigh, s);
     if (referencePath)
         std::printf(" (reference %.3f)", sReference);
+    if (bothPixels > 0) {
+        std::printf("; where both show plants (%zu px) truth %.4f %.4f %.4f, approximation %.4f %.4f %.4f", bothPixels,
+                    bothTruth[0] / double(bothPixels), bothTruth[1] / double(bothPixels),
+                    bothTruth[2] / double(bothPixels), bothApprox[0] / double(bothPixels),
+                    bothApprox[1] / double(bothPixels), bothApprox[2] / double(bothPixels));
+    }
     std::printf(", allowed from %.3f\n", std::max(minSsim, referencePath ? sReference - margin : 0.0));
     bool ok = colourError <= maxColour && coverageRatio >= coverageLow && coverageRatio <= coverageHigh && s >= minSsim;
     if (referencePath)

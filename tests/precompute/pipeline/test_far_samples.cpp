@@ -122,7 +122,7 @@ std::vector<std::pair<uint32_t, glm::vec3>> trianglesNear(const FarSurface& s, g
 
 bool sameBytes(const FarSamples& a, const FarSamples& b) {
     static_assert(sizeof(FarSample) == kFarSampleBytes, "FarSample has no padding");
-    return a.area == b.area && a.samples.size() == b.samples.size() &&
+    return a.area == b.area && a.gain == b.gain && a.samples.size() == b.samples.size() &&
            std::memcmp(a.samples.data(), b.samples.data(), a.samples.size() * sizeof(FarSample)) == 0;
 }
 
@@ -434,7 +434,10 @@ TEST(FarSamples, SectionRoundTripsAndRefusesABadVertex) {
     back.clumps[0].far = {};
     back.field.rocks[0].far = {};
     const size_t bytes = roundTrip(library, back);
-    EXPECT_EQ(bytes, 4u + (8u + 300u * kFarSampleBytes) + 4u + (8u + 300u * kFarSampleBytes));
+    const size_t gainBytes = library.clumps[0].far.gain.size() * 4u;
+    EXPECT_EQ(bytes, 4u + (8u + gainBytes + 300u * kFarSampleBytes) + 4u + (8u + gainBytes + 300u * kFarSampleBytes));
+    // The library's gains were measured (buildLibraryFarSamples): not all 1.
+    EXPECT_NE(library.clumps[0].far.gain, FarSamples{}.gain);
     EXPECT_TRUE(sameBytes(back.clumps[0].far, library.clumps[0].far));
     EXPECT_TRUE(sameBytes(back.field.rocks[0].far, library.field.rocks[0].far));
 
@@ -467,6 +470,84 @@ TEST(FarSamples, SectionRoundTripsAndRefusesABadVertex) {
     EXPECT_EQ(refusal(bad), "library x: section 'FARS': rock-0: its far-field samples cover a non-finite or negative "
                             "area");
     bad = library;
+    bad.clumps[0].far.gain[3] = 0.0f;
+    EXPECT_EQ(refusal(bad), "library x: section 'FARS': clump tuft: its far-field coverage gain 0.000000 is not a "
+                            "positive finite number");
+    bad = library;
     bad.field.rocks.clear();
     EXPECT_EQ(refusal(bad), "library x: section 'FARS' does not hold one entry per rock");
+}
+
+namespace {
+
+// Quads as a far surface (no atlas, one block, every vertex in the far LOD): each quad is corner
+// `origin` spanned by `u` and `v`, its normal u x v.
+FarSurface quads(const std::vector<std::array<glm::vec3, 3>>& spans, bool closed = false) {
+    FarSurface s;
+    for (const auto& [origin, u, v] : spans) {
+        const uint32_t base = uint32_t(s.positions.size());
+        const glm::vec3 n = glm::normalize(glm::cross(u, v));
+        for (const glm::vec3& p : {origin, origin + u, origin + v, origin + u + v}) {
+            s.positions.push_back(p);
+            s.normals.push_back(n);
+            s.uvs.emplace_back(0.0f);
+        }
+        s.indices.insert(s.indices.end(), {base, base + 1, base + 2, base + 1, base + 3, base + 2});
+    }
+    for (uint32_t v = 0; v < uint32_t(s.positions.size()); ++v)
+        s.farVertices.push_back(v);
+    s.closed = closed;
+    return s;
+}
+
+float gainAt(const FarSamples& far, uint32_t size, uint32_t elevation) {
+    return far.gain[size * gpu::kFarGainElevations + elevation];
+}
+
+FarSamples measured(const FarSurface& surface) {
+    FarSamples far = buildFarSamples(surface, 4096, 7);
+    far.gain = farCoverageGains(surface, far);
+    return far;
+}
+
+} // namespace
+
+// Independent splats cover a solid surface's pixels with probability 1 - exp(-d), not 1: the gain
+// that restores an opaque sheet's coverage is well above 1 once it spans pixels, while sparse thin
+// blades, each far narrower than a pixel, need about none (their splats rarely share a pixel).
+TEST(FarSamples, CoverageGainRestoresSolidSurfacesAndLeavesThinBladesAlone) {
+    // A vertical sheet 1 m square standing on the ground, facing +z.
+    const FarSamples sheet = measured(quads({{glm::vec3(-0.5f, 0.0f, 0.0f), {1, 0, 0}, {0, 1, 0}}}));
+    for (uint32_t size = 2; size < gpu::kFarGainSizes; ++size) // 8 px and more
+        for (uint32_t elevation = 0; elevation < 3; ++elevation)
+            EXPECT_GT(gainAt(sheet, size, elevation), 1.5f) << size << " " << elevation;
+
+    // Twelve blades 4 mm wide and 0.8 m tall on a 0.6 m circle, turned every way.
+    std::vector<std::array<glm::vec3, 3>> spans;
+    for (int i = 0; i < 12; ++i) {
+        const float a = float(i) * 0.5236f;
+        const glm::vec3 at(0.3f * std::cos(a), 0.0f, 0.3f * std::sin(a));
+        const glm::vec3 across(0.004f * std::cos(2.0f * a), 0.0f, 0.004f * std::sin(2.0f * a));
+        spans.push_back({at, across, {0.0f, 0.8f, 0.0f}});
+    }
+    const FarSamples blades = measured(quads(spans));
+    // 8 and 16 px (sqrt of the 0.04 m^2 in pixels): the blades are 0.2 to 0.4 px wide there.
+    for (uint32_t size = 2; size < 4; ++size)
+        for (uint32_t elevation = 0; elevation < 3; ++elevation) {
+            EXPECT_GT(gainAt(blades, size, elevation), 0.7f) << size << " " << elevation;
+            EXPECT_LT(gainAt(blades, size, elevation), 1.4f) << size << " " << elevation;
+        }
+}
+
+// The splat pass tests samples against the meshes' depth, which holds the ground: a sample near the
+// ground loses the pixels whose centre sees the ground in front of it. The gains count that: a sheet
+// lying 2 mm above the ground needs more than the same sheet raised 0.3 m, seen from 30 and 60
+// degrees (from straight above the ground is behind both).
+TEST(FarSamples, CoverageGainCountsTheGroundInFront) {
+    const FarSamples lying = measured(quads({{glm::vec3(-0.5f, 0.002f, -0.5f), {0, 0, 1}, {1, 0, 0}}}));
+    const FarSamples raised = measured(quads({{glm::vec3(-0.5f, 0.3f, -0.5f), {0, 0, 1}, {1, 0, 0}}}));
+    for (uint32_t size = 2; size < gpu::kFarGainSizes; ++size)
+        for (uint32_t elevation = 1; elevation < 3; ++elevation)
+            EXPECT_GT(gainAt(lying, size, elevation), 1.1f * gainAt(raised, size, elevation))
+                << size << " " << elevation;
 }

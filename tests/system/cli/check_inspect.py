@@ -27,7 +27,13 @@ for c in j["clumps"]:
     assert 0 < wind["medianSeconds"]["down"] <= wind["p95Seconds"]["down"] < 100, (c["name"], wind)
     lods = c["lods"]
     assert len(lods) == 5 and all(lods[i]["triangles"] > lods[i + 1]["triangles"] for i in range(4)), c["name"]
-# The far field's surface samples: the ci preset's 1024 per clump and rock, over a positive area.
+# The far field's surface samples: the ci preset's 1024 per clump and rock, over a positive area,
+# with their coverage gains (5 sizes of 4 elevations, 4 bytes each): positive, and for rocks (closed
+# solids, whose independent splats leave holes) above 1 once they span pixels.
 for far in [c["far"] for c in j["clumps"]] + [r["far"] for r in j["rocks"]]:
-    assert far["samples"] == 1024 and far["area"] > 0 and far["bytes"] == 8 + 28 * 1024, far
+    assert far["samples"] == 1024 and far["area"] > 0 and far["bytes"] == 8 + 4 * 20 + 28 * 1024, far
+    gain = far["coverageGain"]
+    assert len(gain) == 5 and all(len(row) == 4 and all(0 < g < 16 for g in row) for row in gain), far
+for rock in j["rocks"]:
+    assert all(g > 1.2 for row in rock["far"]["coverageGain"][2:] for g in row), rock
 assert len(j["rocks"]) == f["rockVariants"], j["rocks"]

@@ -248,6 +248,7 @@ meadow_corpus_library(light_count_lie "section 'LITE' does not hold one entry pe
 meadow_corpus_library(sky_frame_count_lie "section 'SKYD': holds 100000 frames")
 meadow_corpus_library(sky_time_nan "section 'SKYD': frame 0 holds a non-finite or negative value")
 meadow_corpus_library(rock_count_lie "section 'ROCK' holds 65 rocks")
+meadow_corpus_library(far_gain_nan "section 'FARS': clump [a-z0-9_-]+: its far-field coverage gain nan is not a positive finite number")
 meadow_corpus_library(far_sample_vertex_out_of_range "section 'FARS': clump [a-z0-9_-]+: far-field sample 0 names vertex 2147483647 of [0-9]+")
 
 # The bad libraries are made from the micro scene's library (micro.json: every section, 300 KB,

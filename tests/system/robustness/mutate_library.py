@@ -181,9 +181,10 @@ CASES = {
     "sky_frame_count_lie": lambda g: rebuilt(g, lambda s: set_u32(section(s, "SKYD"), 16, 100000)),
     "sky_time_nan": lambda g: rebuilt(g, lambda s: set_f32(section(s, "SKYD"), 20, float("nan"))),
     "rock_count_lie": lambda g: rebuilt(g, lambda s: set_u32(section(s, "ROCK"), 0, 65)),
-    # FARS: clump count, then the first clump's area, sample count and first sample (x, y, z,
-    # normal, albedo, vertex): its vertex at 4 + 4 + 4 + 20.
-    "far_sample_vertex_out_of_range": lambda g: rebuilt(g, lambda s: set_u32(section(s, "FARS"), 32, 0x7FFFFFFF)),
+    # FARS: clump count, then the first clump's area, coverage gains (20 f32), sample count and first
+    # sample (x, y, z, normal, albedo, vertex): its first gain at 8, its vertex at 4 + 4 + 80 + 4 + 20.
+    "far_gain_nan": lambda g: rebuilt(g, lambda s: set_f32(section(s, "FARS"), 8, float("nan"))),
+    "far_sample_vertex_out_of_range": lambda g: rebuilt(g, lambda s: set_u32(section(s, "FARS"), 112, 0x7FFFFFFF)),
 }
 
 
