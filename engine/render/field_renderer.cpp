@@ -221,6 +221,7 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     writeMapped(ctx, r.statsReadback, zeros.data(), zeros.size());
     r.atlas = createTexture(ctx, {atlas.width, atlas.height}, VK_FORMAT_R8G8B8A8_SRGB, atlas.rgba.data());
     r.sampler = createLinearSampler(ctx);
+    r.atlasSampler = createLinearSampler(ctx, atlasMaxLod(atlas.width));
     r.pointSampler = createNearestSampler(ctx);
 
     deviceBuffer(r.terrainVertices, scenery.terrain.vertices.data(),
@@ -284,6 +285,8 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
         destroyCpuDriver(ctx, *r.cpuDriver);
     if (r.sampler)
         vkDestroySampler(ctx.device, r.sampler, nullptr);
+    if (r.atlasSampler)
+        vkDestroySampler(ctx.device, r.atlasSampler, nullptr);
     if (r.pointSampler)
         vkDestroySampler(ctx.device, r.pointSampler, nullptr);
     r = FieldRenderer{};
@@ -537,7 +540,7 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
 
     bindPipeline(ctx, cmd, r.instance,
                  {r.frameUniforms, r.visibleList, r.drawInstances, r.clumps, r.lodVertices, r.motionData, r.vertexLight,
-                  Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
+                  Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.atlasSampler)});
     pushConstants(ctx, cmd, r.instance, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
     for (uint32_t lod = 0; lod < r.lodCount; ++lod)

@@ -151,6 +151,7 @@ struct FieldRenderer {
 
     Image atlas;
     VkSampler sampler = VK_NULL_HANDLE;
+    VkSampler atlasSampler = VK_NULL_HANDLE; // trilinear, stopping at the mip level whose parts stay apart
     VkSampler pointSampler = VK_NULL_HANDLE; // the depth, read by the splat pass
 
     // The field's ground light map (ground_map.vert): the share of open-ground light reaching each

@@ -270,13 +270,13 @@ Image createTexture(Context& ctx, VkExtent2D extent, VkFormat format, const void
     return image;
 }
 
-VkSampler createLinearSampler(Context& ctx) {
+VkSampler createLinearSampler(Context& ctx, float maxLod) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = VK_FILTER_LINEAR;
     info.minFilter = VK_FILTER_LINEAR;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
     info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.maxLod = VK_LOD_CLAMP_NONE;
+    info.maxLod = maxLod;
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));
     return sampler;

@@ -96,8 +96,9 @@ void uploadToBuffer(Context& context, const Buffer& destination, const void* dat
 // linear blits; left in SHADER_READ_ONLY_OPTIMAL for fragment shaders. Waits for the copy.
 Image createTexture(Context& context, VkExtent2D extent, VkFormat format, const void* rgba);
 
-// A trilinear sampler that clamps to the edge (atlas regions must not bleed across the border).
-VkSampler createLinearSampler(Context& context);
+// A trilinear sampler that clamps to the edge (atlas regions must not bleed across the border),
+// reading mip levels up to `maxLod`.
+VkSampler createLinearSampler(Context& context, float maxLod = VK_LOD_CLAMP_NONE);
 // Point sampling, for images read texel by texel (texelFetch), such as depth.
 VkSampler createNearestSampler(Context& context);
 

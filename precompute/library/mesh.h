@@ -30,6 +30,20 @@ struct RgbaImage {
     std::vector<uint8_t> rgba;
 };
 
+// The plants' atlas is laid out in cells whose sides are whole multiples of 1 / kAtlasGrid of its
+// side, each part's texture painted to its cell's edge and used 1 / 128 of the side inside it
+// (plants/atlas.cpp). Its mipmaps, 2 x 2 boxes of a power-of-two image, keep the cells apart while
+// a grid unit is 2 texels or more; trilinear filtering stays inside a part while the inset is half a
+// texel: up to the level where a unit is 8 texels. The run time reads no coarser level
+// (atlasMaxLod): coarser ones mix the violet falls, the orange beards and the green leaves.
+inline constexpr uint32_t kAtlasGrid = 8;
+inline float atlasMaxLod(uint32_t width) {
+    uint32_t level = 0;
+    while ((width >> (level + 1)) >= kAtlasGrid * 8)
+        ++level;
+    return float(level);
+}
+
 // A small tuft of curved, tapering two-sided blades: a cheap mesh for tests of the draw path.
 // Deterministic for a given blade count.
 Mesh makeTuftMesh(uint32_t blades = 9, uint32_t segments = 5);

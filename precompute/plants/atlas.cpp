@@ -24,7 +24,7 @@ constexpr Cell kCells[kPartKindCount] = {
 };
 // The region sits this far (UV) inside its cell; the gap is painted with the region's edge
 // colours so filtering and the first mip levels stay within the part.
-constexpr float kInset = 1.0f / 128.0f;
+constexpr float kInset = 1.0f / 128.0f; // library/mesh.h, kAtlasGrid
 
 const Cell& cellOf(PartKind part) {
     return kCells[static_cast<uint32_t>(part)];
