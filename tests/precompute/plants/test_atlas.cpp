@@ -1,6 +1,7 @@
 // The iris texture atlas (precompute/plants/atlas.h): determinism, layout, colours, and the
 // round trip through OpenImageIO.
 #include "core/error.h"
+#include "library/mesh.h"
 #include "plants/atlas.h"
 
 #include <OpenImageIO/imageio.h>
@@ -78,6 +79,48 @@ TEST(Atlas, RegionsAreInsideAndDisjoint) {
 TEST(Atlas, OpaqueEverywhere) {
     for (size_t i = 3; i < atlas().rgba.size(); i += 4)
         ASSERT_EQ(atlas().rgba[i], 255) << "texel " << i / 4;
+}
+
+// The part whose cell holds mip-0 texel (x, y): the region that, widened by its inset of 1/128 of
+// the atlas, holds the texel's centre; -1 for none.
+int cellOf(const TextureAtlas& a, uint32_t x, uint32_t y) {
+    const glm::vec2 uv((float(x) + 0.5f) / float(a.width), (float(y) + 0.5f) / float(a.height));
+    for (int i = 0; i < int(std::size(kParts)); ++i) {
+        const AtlasRegion r = a.region(kParts[i]);
+        if (uv.x >= r.min.x - 1.0f / 128.0f && uv.x <= r.max.x + 1.0f / 128.0f && uv.y >= r.min.y - 1.0f / 128.0f &&
+            uv.y <= r.max.y + 1.0f / 128.0f)
+            return i;
+    }
+    return -1;
+}
+
+// Whether mip level `level` (2 x 2 boxes down from the atlas) keeps the parts apart under trilinear
+// filtering: each of its texels averages one cell's texels, and the regions' inset is at least half
+// a texel of the level, so bilinear reads inside a region stay in its cell.
+bool levelKeepsPartsApart(const TextureAtlas& a, uint32_t level) {
+    const uint32_t block = 1u << level;
+    for (uint32_t by = 0; by < a.height / block; ++by)
+        for (uint32_t bx = 0; bx < a.width / block; ++bx) {
+            const int cell = cellOf(a, bx * block, by * block);
+            for (uint32_t y = by * block; y < (by + 1) * block; ++y)
+                for (uint32_t x = bx * block; x < (bx + 1) * block; ++x)
+                    if (cellOf(a, x, y) != cell)
+                        return false;
+        }
+    return float(a.width) / 128.0f / float(block) >= 0.5f;
+}
+
+// The run time reads the atlas's mipmaps down to atlasMaxLod (library/mesh.h), where the parts
+// still keep their own colours, and no coarser: the next level would mix them.
+TEST(Atlas, MipLevelsTheRunTimeReadsKeepThePartsApart) {
+    for (uint32_t size : {256u, 1024u}) {
+        const TextureAtlas a = makeIrisAtlas(size, 11);
+        const uint32_t last = uint32_t(atlasMaxLod(size));
+        for (uint32_t level = 0; level <= last; ++level)
+            EXPECT_TRUE(levelKeepsPartsApart(a, level)) << size << " " << level;
+        EXPECT_FALSE(levelKeepsPartsApart(a, last + 1)) << size;
+    }
+    EXPECT_EQ(atlasMaxLod(256), 2.0f);
 }
 
 TEST(Atlas, PartsHaveTheirColours) {
