@@ -4,11 +4,12 @@
 # the far field's reference (its clumps as LOD 0 meshes, --far-lod0), the far field, the LOD meshes
 # alone and the far field's LOD view (cyan: the far field), into one sheet.
 #   scripts/far-field-sheet.sh [SCENE] [OUTDIR] [SIZE] [FAR_RADIUS] [PRESET]
+# MEADOW=path/to/meadow uses that build (default: build/engine/meadow, built Release if missing).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 scene="${1:-$root/data/scenes/irises.json}"; out="${2:-$root/out/far-field}"; size="${3:-960x540}"
 radius="${4:-7}"; preset="${5:-ci}"
-meadow="$root/build/engine/meadow"
+meadow="${MEADOW:-$root/build/engine/meadow}"
 [[ -x "$meadow" ]] || bash "$root/scripts/build.sh" "$root/build" -DCMAKE_BUILD_TYPE=Release >&2
 mkdir -p "$out"
 views=("default:" "low:-30,1.2,-30,0,0.4,0" "high:-22,16,-22,4,0,4")
