@@ -1,10 +1,13 @@
 #include "render/cpu_driver.h"
 
 #include "core/error.h"
+#include "far_splat.h"
 #include "render/cull_reference.h"
 #include "vk/context.h"
 #include "wind_field.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <tbb/parallel_for.h>
 
@@ -19,10 +22,11 @@ struct CpuDriver {
     std::vector<gpu::GpuClump> clumps;
     std::vector<gpu::GpuDrawIndexedCommand> drawTemplate;
     uint32_t lodCount = 1;
-    // Staging, host-visible: per-instance draw records, draw commands, statistics and the visible
-    // list, in this order.
+    // Staging, host-visible: per-instance draw records, draw commands, statistics, the visible
+    // list, the far list and the far field's dispatch, in this order.
     Buffer staging;
-    size_t recordsAt = 0, drawsAt = 0, statsAt = 0, visibleAt = 0;
+    size_t recordsAt = 0, drawsAt = 0, statsAt = 0, visibleAt = 0, farListAt = 0, farDispatchAt = 0;
+    uint32_t farEntries = 0;                 // written this frame
     uint32_t visibleEntries = 0;             // written this frame
     std::vector<VkBufferCopy> visibleCopies; // this frame's used part of each bucket's range
     std::vector<VkBufferCopy> recordCopies;  // this frame's visible instances' records, in runs
@@ -55,8 +59,10 @@ void enableCpuDriver(Context& ctx, FieldRenderer& r, std::span<const FieldClump>
     d->drawsAt = d->recordsAt + instances.size() * sizeof(gpu::GpuDrawInstance);
     d->statsAt = d->drawsAt + d->drawTemplate.size() * sizeof(gpu::GpuDrawIndexedCommand);
     d->visibleAt = d->statsAt + sizeof(gpu::GpuCullStats);
-    d->staging =
-        createBuffer(ctx, d->visibleAt + r.visibleList.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+    d->farListAt = d->visibleAt + r.visibleList.size;
+    d->farDispatchAt = d->farListAt + instances.size() * 2 * sizeof(uint32_t);
+    d->staging = createBuffer(ctx, d->farDispatchAt + sizeof(gpu::GpuFarDispatch), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                              MemoryUse::Upload);
     r.cpuDriver = std::move(d);
 }
 
@@ -106,6 +112,28 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
             entry;
         ++d.visibleEntries;
     };
+    // The far field's list, as cull.comp's appendFar writes it: the entry (the fade bit on the second
+    // draw of a crossfade) and the samples its projected surface wants.
+    d.farEntries = 0;
+    const bool farAsLod0 = (frame.motion.w & gpu::kFrameFarAsLod0) != 0u;
+    auto appendFar = [&](uint32_t entry, const gpu::GpuInstance& inst) {
+        const float scale = std::abs(inst.positionScale.w);
+        const glm::vec3 center =
+            glm::vec3(inst.positionScale) + glm::vec3(0.0f, inst.boundingRadius * scale * 0.5f, 0.0f);
+        const glm::vec3 d3 = center - glm::vec3(frame.cameraPosition);
+        const float dist = std::max(std::sqrt(d3.x * d3.x + d3.y * d3.y + d3.z * d3.z), 1e-3f);
+        const gpu::GpuClump& clump = d.clumps[inst.mesh];
+        float area;
+        std::memcpy(&area, &clump.far.z, sizeof area);
+        const uint32_t count =
+            gpu::farSampleCount(area * scale * scale, frame.lodScreen.x / dist, frame.lodScreen.y, clump.far.y);
+        const uint32_t item[2] = {entry, count};
+        std::memcpy(hostWriteAt(ctx, d.staging, d.farListAt + size_t(d.farEntries) * sizeof item, sizeof item), item,
+                    sizeof item);
+        ++d.farEntries;
+        ++stats.farInstances;
+        stats.farSamples += count;
+    };
     for (uint32_t i = 0; i < d.instances.size(); ++i) {
         ++stats.testedInstances;
         if (!instanceVisible(frame, d.instances[i]))
@@ -120,11 +148,21 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
         const gpu::GpuLodChoice choice = lodReference(frame, d.instances[i], i, d.lodX[i]);
         d.lodX[i] = choice.x;
         record(i, choice.x, true);
+        const bool far = choice.lod == gpu::kLodFar, farFade = choice.fadeLod == gpu::kLodFar && !far;
         const uint32_t lod = std::min(choice.lod, d.lodCount - 1), fade = std::min(choice.fadeLod, d.lodCount - 1);
-        append(first + lod, i);
-        if (fade != lod)
+        if (!far)
+            append(first + lod, i);
+        if (fade != lod && !farFade)
             append(first + fade, i | gpu::kLodFadeEntryBit);
+        if ((far || farFade) && farAsLod0) {
+            append(first, (farFade ? i | gpu::kLodFadeEntryBit : i) | gpu::kLodFarMeshEntryBit);
+            ++stats.farInstances;
+        } else if (far || farFade) {
+            appendFar(farFade ? i | gpu::kLodFadeEntryBit : i, d.instances[i]);
+        }
     }
+    const gpu::GpuFarDispatch dispatch{std::min(d.farEntries, gpu::kFarMaxGroups), 1u, 1u, d.farEntries};
+    std::memcpy(hostWriteAt(ctx, d.staging, d.farDispatchAt, sizeof dispatch), &dispatch, sizeof dispatch);
     d.visibleCopies.clear();
     for (size_t m = 0; m < d.drawTemplate.size(); ++m)
         if (draws[m].instanceCount > 0)
@@ -144,6 +182,12 @@ void cpuDriverRecordUploads(CpuDriver& d, const FieldRenderer& r, VkCommandBuffe
     vkCmdCopyBuffer(cmd, from, r.stats.buffer, 1, &stats);
     if (!d.visibleCopies.empty())
         vkCmdCopyBuffer(cmd, from, r.visibleList.buffer, uint32_t(d.visibleCopies.size()), d.visibleCopies.data());
+    if (d.farEntries > 0) {
+        VkBufferCopy farList{d.farListAt, 0, VkDeviceSize(d.farEntries) * 2 * sizeof(uint32_t)};
+        vkCmdCopyBuffer(cmd, from, r.farList.buffer, 1, &farList);
+    }
+    VkBufferCopy farDispatch{d.farDispatchAt, 0, sizeof(gpu::GpuFarDispatch)};
+    vkCmdCopyBuffer(cmd, from, r.farDispatch.buffer, 1, &farDispatch);
 }
 
 const std::vector<gpu::GpuMotionState>& cpuDriverStates(const CpuDriver& d) {

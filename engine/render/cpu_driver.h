@@ -1,8 +1,9 @@
 // The CPU-driven comparison path (`meadow bench --driver cpu`): the paper's architecture on
 // today's API. Each frame the CPU steps every instance's motion graph, culls, picks LODs and
-// fills the draw commands and visible lists, and uploads all of it; the GPU only lights and
-// draws. It runs the same functions as the compute passes' CPU references (wind_field.h,
-// motion_step.h, cull_reference.h), so both paths draw the same picture.
+// fills the draw commands and visible lists (with a far field, also the far list and the splat
+// pass's dispatch, as the cull pass would), and uploads all of it; the GPU only lights and draws
+// (and splats). It runs the same functions as the compute passes' CPU references (wind_field.h,
+// motion_step.h, cull_reference.h, far_splat.h), so both paths draw the same picture.
 #pragma once
 
 #include "render/field_renderer.h"

@@ -52,6 +52,7 @@ gpu::GpuLodChoice lodReference(const gpu::GpuFrame& frame, const gpu::GpuInstanc
     p.band = frame.lodBand.x;
     p.jitter = frame.lodBand.y;
     p.hysteresis = frame.lodBand.z;
+    p.farRadius = frame.lodBand.w;
     return gpu::lodSelect(p, screenRadius, gpu::lodInstanceRandom(index), previousX);
 }
 
@@ -68,9 +69,12 @@ std::vector<std::vector<uint32_t>> cullReferenceBuckets(const gpu::GpuFrame& fra
         }
         const gpu::GpuLodChoice c = lodReference(frame, instances[i], i, lodX[i]);
         lodX[i] = c.x;
+        // As cull.comp: the far field's instances go to its list, not to a bucket.
+        const bool far = c.lod == gpu::kLodFar, farFade = c.fadeLod == gpu::kLodFar && !far;
         const uint32_t lod = std::min(c.lod, lodCount - 1), fadeLod = std::min(c.fadeLod, lodCount - 1);
-        buckets[first + lod].push_back(i);
-        if (fadeLod != lod)
+        if (!far)
+            buckets[first + lod].push_back(i);
+        if (fadeLod != lod && !farFade)
             buckets[first + fadeLod].push_back(i | gpu::kLodFadeEntryBit);
     }
     for (std::vector<uint32_t>& b : buckets)

@@ -300,8 +300,7 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
     f.counts.w = r.lodCount;
     f.lodSwitchRadius = glm::vec4(r.lodParams.switchRadius[0], r.lodParams.switchRadius[1], r.lodParams.switchRadius[2],
                                   r.lodParams.switchRadius[3]);
-    // The CPU-driven path culls on the host, without a far field: it draws far clumps at LOD 4.
-    const bool far = r.farField && !r.cpuDriver;
+    const bool far = r.farField;
     f.lodBand =
         glm::vec4(r.lodParams.band, r.lodParams.jitter, r.lodParams.hysteresis, far ? r.lodParams.farRadius : 0.0f);
     f.lodScreen.y = r.farDensity;
@@ -399,10 +398,10 @@ void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
 
 namespace {
 
-// The far field runs on the GPU-driven path only: the CPU-driven one culls on the host and draws
-// far clumps at LOD 4 (frameUniforms gives its frames no far radius).
+// The far field runs on both paths: the CPU-driven one uploads the far list and its dispatch that
+// the cull pass would write (cpu_driver.h).
 bool farRuns(const FieldRenderer& r) {
-    return r.farField && !r.cpuDriver;
+    return r.farField;
 }
 
 void markPass(GpuTimer* timer, VkCommandBuffer cmd, const char* pass) {

@@ -1,8 +1,9 @@
 // A whole frame on a real device: timestamps around every pass, what the CPU uploads per frame,
-// and the CPU-driven comparison path against the GPU-driven one.
+// and the CPU-driven comparison path against the GPU-driven one, with and without the far field.
 // ctest runs these at two lavapipe vector widths (LP_NATIVE_VECTOR_WIDTH=128 and 256).
 #include "gpu_fixture.h"
 #include "library/mesh.h"
+#include "pipeline/far_samples.h"
 #include "render/cpu_driver.h"
 #include "render/field_renderer.h"
 #include "render/offscreen.h"
@@ -131,4 +132,73 @@ TEST_F(Gpu, CpuDrivenPathDrawsTheSamePicture) {
     // The CPU path uploads a draw record per visible instance every frame: far more than the GPU
     // path's uniforms.
     EXPECT_GT(uploads[1], uploads[0] + 100 * sizeof(gpu::GpuDrawInstance));
+}
+
+namespace {
+
+// The clump's far-field samples, as the precompute builds them (pipeline/far_samples.h): over its
+// LOD 0, each following a vertex of its last LOD, with their measured coverage gains.
+void giveFarSamples(FieldClump& clump) {
+    FarSurface surface;
+    for (const gpu::GpuVertex& v : clump.mesh.vertices) {
+        surface.positions.push_back(glm::vec3(v.positionU));
+        surface.normals.push_back(glm::vec3(v.normalV));
+        surface.uvs.emplace_back(v.positionU.w, v.normalV.w);
+    }
+    for (uint32_t i : clump.lods[0].indices)
+        surface.indices.push_back(clump.lods[0].vertices[i]);
+    surface.farVertices = clump.lods.back().vertices;
+    const FarSamples far = buildFarSamples(surface, 512, 5);
+    clump.far = far.samples;
+    clump.farArea = far.area;
+    clump.farGain = farCoverageGains(surface, far);
+}
+
+} // namespace
+
+// With the far field on, the CPU-driven path writes the far list and its dispatch that the cull
+// pass would, and the same splat pass draws them: the same picture, the same far instances.
+TEST_F(Gpu, CpuDrivenPathDrawsTheSameFarField) {
+    std::vector<FieldClump> clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount)};
+    for (FieldClump& clump : clumps)
+        giveFarSamples(clump);
+    std::vector<gpu::GpuInstance> instances = scatter(4000, 29);
+    for (gpu::GpuInstance& inst : instances) {
+        inst.mesh %= 2;
+        inst.positionScale = glm::vec4(glm::vec3(inst.positionScale) * 0.1f, inst.positionScale.w > 0 ? 1.0f : -1.0f);
+        inst.positionScale.y = 0.0f;
+        inst.boundingRadius = 1.0f;
+    }
+    FieldScenery scenery = testScenery();
+    scenery.lodCount = kLodCount;
+    scenery.lod = {{60.0f, 25.0f, 10.0f, 4.0f}, 0.1f, 0.2f, 0.05f, 3.0f};
+    Camera camera;
+    camera.eye = glm::vec3(0.0f, 3.0f, -25.0f);
+    camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+    std::vector<uint8_t> pictures[2];
+    FieldStats stats[2];
+    for (int path = 0; path < 2; ++path) {
+        FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
+        if (path == 1)
+            enableCpuDriver(*context, renderer, clumps, instances);
+        Offscreen offscreen = createOffscreen(*context, {160, 90});
+        FrameState state = frameState(camera, 160, 90);
+        state.wind.baseLevel = 2.0f;
+        for (int frame = 0; frame < 4; ++frame) {
+            state.seconds = frame * 0.1;
+            state.camera.eye.x = float(frame) * 0.5f;
+            renderOffscreenFrame(*context, renderer, offscreen, state);
+        }
+        pictures[path] = readLdrPixels(*context, offscreen.targets);
+        stats[path] = readFieldStats(renderer);
+        destroyOffscreen(*context, offscreen);
+        destroyFieldRenderer(*context, renderer);
+    }
+    EXPECT_GT(stats[0].farInstances, 200u);
+    EXPECT_EQ(stats[1].farInstances, stats[0].farInstances);
+    EXPECT_EQ(stats[1].farSamples, stats[0].farSamples);
+    size_t differing = 0;
+    for (size_t i = 0; i < pictures[0].size(); ++i)
+        differing += std::abs(int(pictures[0][i]) - int(pictures[1][i])) > 8;
+    EXPECT_LE(differing, pictures[0].size() / 1000);
 }
