@@ -33,13 +33,13 @@ void append(uint bucket, uint entry) {
 }
 
 // A far instance: as many of its clump's samples as its projected surface wants; one more
-// workgroup for the splat pass, up to kFarMaxGroups.
+// workgroup for the splat pass per kFarInstancesPerGroup of them, up to kFarMaxGroups.
 void appendFar(uint entry, GpuClump clump, float scale, float pixelsPerMetre) {
     float area = uintBitsToFloat(clump.far.z) * scale * scale;
     uint count = farSampleCount(area, pixelsPerMetre, frame.lodScreen.y, clump.far.y);
     uint slot = atomicAdd(farDispatch.count, 1u);
     farList[slot] = uvec2(entry, count);
-    if (slot < kFarMaxGroups)
+    if (slot % kFarInstancesPerGroup == 0u && slot / kFarInstancesPerGroup < kFarMaxGroups)
         atomicAdd(farDispatch.groupsX, 1u);
     atomicAdd(stats.farInstances, 1u);
     atomicAdd(stats.farSamples, count);

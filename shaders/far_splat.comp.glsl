@@ -1,8 +1,8 @@
 #version 460
-// Far field, splat pass: far instances drawn as surface samples (issue 18; far_splat.h). One
-// workgroup per far instance of the cull pass's far list (indirect dispatch, each group taking
-// every gl_NumWorkGroups-th entry), its threads striding over the first `count` of the clump's
-// shuffled samples. Each sample moves with the last-LOD vertex it follows (x̄ + U q at that LOD's
+// Far field, splat pass: far instances drawn as surface samples (issue 18; far_splat.h). Each
+// workgroup takes kFarInstancesPerGroup entries of the cull pass's far list at a time (indirect
+// dispatch, then every gl_NumWorkGroups-th set), kFarGroupSize / kFarInstancesPerGroup threads
+// striding over the first `count` of each one's clump's shuffled samples. Each sample moves with the last-LOD vertex it follows (x̄ + U q at that LOD's
 // modes, blended across graph jumps, as instance.vert) and takes the light of its triangle's
 // nearest vertex to first order in that displacement, projects to a square of `side` pixels, and is kept where it is
 // nearer than the meshes' depth and, while the instance crossfades from LOD 4, where the dither
@@ -61,7 +61,10 @@ float coverageGain(GpuClump clump, float area, vec3 base) {
 void main() {
     uint total = farDispatch.count;
     ivec2 size = ivec2(frame.lodScreen.zw);
-    for (uint item = gl_WorkGroupID.x; item < total; item += gl_NumWorkGroups.x) {
+    const uint lanes = kFarGroupSize / kFarInstancesPerGroup;
+    uint lane = gl_LocalInvocationID.x % lanes, set = gl_LocalInvocationID.x / lanes;
+    for (uint item = gl_WorkGroupID.x * kFarInstancesPerGroup + set; item < total;
+         item += gl_NumWorkGroups.x * kFarInstancesPerGroup) {
         uvec2 listed = farList[item];
         uint entry = listed.x;
         uint count = listed.y;
@@ -79,7 +82,7 @@ void main() {
         float area = uintBitsToFloat(clump.far.z) * scale * scale;
         float areaPerSample = area / float(count);
         float gain = coverageGain(clump, area, inst.positionScale.xyz);
-        for (uint k = gl_LocalInvocationID.x; k < count; k += kFarGroupSize) {
+        for (uint k = lane; k < count; k += lanes) {
             GpuFarSample farSample = farSamples[clump.far.x + k];
             GpuLodVertex v = lodVertices[farSample.data.w];
             uint rank = v.motion.w & 0xffffu;

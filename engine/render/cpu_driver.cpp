@@ -161,7 +161,8 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
             appendFar(farFade ? i | gpu::kLodFadeEntryBit : i, d.instances[i]);
         }
     }
-    const gpu::GpuFarDispatch dispatch{std::min(d.farEntries, gpu::kFarMaxGroups), 1u, 1u, d.farEntries};
+    const uint32_t farGroups = (d.farEntries + gpu::kFarInstancesPerGroup - 1) / gpu::kFarInstancesPerGroup;
+    const gpu::GpuFarDispatch dispatch{std::min(farGroups, gpu::kFarMaxGroups), 1u, 1u, d.farEntries};
     std::memcpy(hostWriteAt(ctx, d.staging, d.farDispatchAt, sizeof dispatch), &dispatch, sizeof dispatch);
     d.visibleCopies.clear();
     for (size_t m = 0; m < d.drawTemplate.size(); ++m)

@@ -23,10 +23,13 @@ MEADOW_CONST kCullGroupSize = 64;
 MEADOW_CONST kAnimateGroupSize = 64;
 MEADOW_CONST kLightGroupSize = 64;
 MEADOW_CONST kTonemapGroupSize = 8;
-// The far field (far_splat.h): one splat workgroup per far instance (at most kFarMaxGroups, each
-// then taking every kFarMaxGroups-th instance), its threads striding over the instance's samples;
-// the resolve pass one thread per pixel.
+// The far field (far_splat.h): a splat workgroup takes kFarInstancesPerGroup far instances at once,
+// kFarGroupSize / kFarInstancesPerGroup threads striding over each one's samples (most far
+// instances have a few dozen: a whole group on one would leave most threads idle); one workgroup
+// per kFarInstancesPerGroup listed instances, at most kFarMaxGroups, each then taking every
+// kFarMaxGroups-th set; the resolve pass one thread per pixel.
 MEADOW_CONST kFarGroupSize = 64;
+MEADOW_CONST kFarInstancesPerGroup = 32;
 MEADOW_CONST kFarMaxGroups = 65535;
 MEADOW_CONST kFarResolveGroupSize = 8;
 
