@@ -78,23 +78,66 @@ TEST_F(Gpu, UploadPerFrameIsSmallAndIndependentOfFieldSize) {
     EXPECT_LT(bytes[1][1], bytes[1][0]); // no light pass while the sky holds still
 }
 
-// The CPU-driven comparison path steps, culls and uploads on the host what the compute passes
-// produce on the GPU: the same motion states, and the same picture.
-TEST_F(Gpu, CpuDrivenPathDrawsTheSamePicture) {
-    std::vector<FieldClump> clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount)};
-    std::vector<gpu::GpuInstance> instances = scatter(4000, 29);
-    for (gpu::GpuInstance& inst : instances) {
+namespace {
+
+// The clump's far-field samples, as the precompute builds them (pipeline/far_samples.h): over its
+// LOD 0, each following a vertex of its last LOD, with their measured coverage gains.
+void giveFarSamples(FieldClump& clump) {
+    FarSurface surface;
+    for (const gpu::GpuVertex& v : clump.mesh.vertices) {
+        surface.positions.push_back(glm::vec3(v.positionU));
+        surface.normals.push_back(glm::vec3(v.normalV));
+        surface.uvs.emplace_back(v.positionU.w, v.normalV.w);
+    }
+    for (uint32_t i : clump.lods[0].indices)
+        surface.indices.push_back(clump.lods[0].vertices[i]);
+    surface.farVertices = clump.lods.back().vertices;
+    const FarSamples far = buildFarSamples(surface, 512, 5);
+    clump.far = far.samples;
+    clump.farArea = far.area;
+    clump.farGain = farCoverageGains(surface, far);
+}
+
+// The field both driving paths draw: a moving and a static clump, each with far-field samples,
+// 4,000 instances within 20 m, five LODs and, with farRadius > 0, the far field; the camera 25 m
+// away.
+struct ComparisonField {
+    std::vector<FieldClump> clumps;
+    std::vector<gpu::GpuInstance> instances;
+    FieldScenery scenery;
+    Camera camera;
+};
+
+ComparisonField comparisonField(float farRadius) {
+    ComparisonField f;
+    f.clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount)};
+    for (FieldClump& clump : f.clumps)
+        giveFarSamples(clump);
+    f.instances = scatter(4000, 29);
+    for (gpu::GpuInstance& inst : f.instances) {
         inst.mesh %= 2;
         inst.positionScale = glm::vec4(glm::vec3(inst.positionScale) * 0.1f, inst.positionScale.w > 0 ? 1.0f : -1.0f);
         inst.positionScale.y = 0.0f;
         inst.boundingRadius = 1.0f;
     }
-    FieldScenery scenery = testScenery();
-    scenery.lodCount = kLodCount;
-    scenery.lod = {{60.0f, 25.0f, 10.0f, 4.0f}, 0.1f, 0.2f, 0.05f, 0.0f};
-    Camera camera;
-    camera.eye = glm::vec3(0.0f, 3.0f, -25.0f);
-    camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+    f.scenery = testScenery();
+    f.scenery.lodCount = kLodCount;
+    f.scenery.lod = {{60.0f, 25.0f, 10.0f, 4.0f}, 0.1f, 0.2f, 0.05f, farRadius};
+    f.camera.eye = glm::vec3(0.0f, 3.0f, -25.0f);
+    f.camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+    return f;
+}
+
+} // namespace
+
+// The CPU-driven comparison path steps, culls and uploads on the host what the compute passes
+// produce on the GPU: the same motion states, and the same picture.
+TEST_F(Gpu, CpuDrivenPathDrawsTheSamePicture) {
+    const ComparisonField field = comparisonField(0.0f);
+    const std::vector<FieldClump>& clumps = field.clumps;
+    const std::vector<gpu::GpuInstance>& instances = field.instances;
+    const FieldScenery& scenery = field.scenery;
+    const Camera& camera = field.camera;
     std::vector<uint8_t> pictures[2];
     std::vector<gpu::GpuMotionState> states[2];
     uint64_t uploads[2] = {0, 0};
@@ -134,47 +177,14 @@ TEST_F(Gpu, CpuDrivenPathDrawsTheSamePicture) {
     EXPECT_GT(uploads[1], uploads[0] + 100 * sizeof(gpu::GpuDrawInstance));
 }
 
-namespace {
-
-// The clump's far-field samples, as the precompute builds them (pipeline/far_samples.h): over its
-// LOD 0, each following a vertex of its last LOD, with their measured coverage gains.
-void giveFarSamples(FieldClump& clump) {
-    FarSurface surface;
-    for (const gpu::GpuVertex& v : clump.mesh.vertices) {
-        surface.positions.push_back(glm::vec3(v.positionU));
-        surface.normals.push_back(glm::vec3(v.normalV));
-        surface.uvs.emplace_back(v.positionU.w, v.normalV.w);
-    }
-    for (uint32_t i : clump.lods[0].indices)
-        surface.indices.push_back(clump.lods[0].vertices[i]);
-    surface.farVertices = clump.lods.back().vertices;
-    const FarSamples far = buildFarSamples(surface, 512, 5);
-    clump.far = far.samples;
-    clump.farArea = far.area;
-    clump.farGain = farCoverageGains(surface, far);
-}
-
-} // namespace
-
 // With the far field on, the CPU-driven path writes the far list and its dispatch that the cull
 // pass would, and the same splat pass draws them: the same picture, the same far instances.
 TEST_F(Gpu, CpuDrivenPathDrawsTheSameFarField) {
-    std::vector<FieldClump> clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount)};
-    for (FieldClump& clump : clumps)
-        giveFarSamples(clump);
-    std::vector<gpu::GpuInstance> instances = scatter(4000, 29);
-    for (gpu::GpuInstance& inst : instances) {
-        inst.mesh %= 2;
-        inst.positionScale = glm::vec4(glm::vec3(inst.positionScale) * 0.1f, inst.positionScale.w > 0 ? 1.0f : -1.0f);
-        inst.positionScale.y = 0.0f;
-        inst.boundingRadius = 1.0f;
-    }
-    FieldScenery scenery = testScenery();
-    scenery.lodCount = kLodCount;
-    scenery.lod = {{60.0f, 25.0f, 10.0f, 4.0f}, 0.1f, 0.2f, 0.05f, 3.0f};
-    Camera camera;
-    camera.eye = glm::vec3(0.0f, 3.0f, -25.0f);
-    camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+    const ComparisonField field = comparisonField(3.0f);
+    const std::vector<FieldClump>& clumps = field.clumps;
+    const std::vector<gpu::GpuInstance>& instances = field.instances;
+    const FieldScenery& scenery = field.scenery;
+    const Camera& camera = field.camera;
     std::vector<uint8_t> pictures[2];
     FieldStats stats[2];
     for (int path = 0; path < 2; ++path) {
