@@ -128,87 +128,76 @@ ComparisonField comparisonField(float farRadius) {
     return f;
 }
 
+// What one driving path drew of the field after `frames` frames, 0.1 s apart, the camera sliding.
+struct PathRun {
+    std::vector<uint8_t> picture;
+    FieldStats stats;
+    std::vector<gpu::GpuMotionState> states;
+    uint64_t lastFrameUpload = 0; // host bytes written for the last frame
+};
+
+PathRun drawOnPath(Context& context, const ComparisonField& field, bool cpuDriven, int frames) {
+    FieldRenderer renderer = createFieldRenderer(context, field.clumps, field.instances, testAtlas(), field.scenery);
+    if (cpuDriven)
+        enableCpuDriver(context, renderer, field.clumps, field.instances);
+    Offscreen offscreen = createOffscreen(context, {160, 90});
+    FrameState state = frameState(field.camera, 160, 90);
+    state.wind.baseLevel = 2.0f;
+    PathRun run;
+    for (int frame = 0; frame < frames; ++frame) {
+        state.seconds = frame * 0.1;
+        state.camera.eye.x = float(frame) * 0.5f;
+        const uint64_t before = context.hostBytesWritten;
+        renderOffscreenFrame(context, renderer, offscreen, state);
+        run.lastFrameUpload = context.hostBytesWritten - before;
+    }
+    run.picture = readLdrPixels(context, offscreen.targets);
+    run.stats = readFieldStats(renderer);
+    run.states.resize(field.instances.size());
+    if (cpuDriven)
+        run.states = cpuDriverStates(*renderer.cpuDriver);
+    else
+        readbackBuffer(context, renderer.motionStates, run.states.data(),
+                       run.states.size() * sizeof(gpu::GpuMotionState));
+    destroyOffscreen(context, offscreen);
+    destroyFieldRenderer(context, renderer);
+    return run;
+}
+
+// Channels of two pictures that differ by more than 8 of 255.
+size_t differingChannels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+    size_t differing = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+        differing += std::abs(int(a[i]) - int(b[i])) > 8;
+    return differing;
+}
+
 } // namespace
 
 // The CPU-driven comparison path steps, culls and uploads on the host what the compute passes
 // produce on the GPU: the same motion states, and the same picture.
 TEST_F(Gpu, CpuDrivenPathDrawsTheSamePicture) {
     const ComparisonField field = comparisonField(0.0f);
-    const std::vector<FieldClump>& clumps = field.clumps;
-    const std::vector<gpu::GpuInstance>& instances = field.instances;
-    const FieldScenery& scenery = field.scenery;
-    const Camera& camera = field.camera;
-    std::vector<uint8_t> pictures[2];
-    std::vector<gpu::GpuMotionState> states[2];
-    uint64_t uploads[2] = {0, 0};
-    for (int path = 0; path < 2; ++path) {
-        FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
-        if (path == 1)
-            enableCpuDriver(*context, renderer, clumps, instances);
-        Offscreen offscreen = createOffscreen(*context, {160, 90});
-        FrameState state = frameState(camera, 160, 90);
-        state.wind.baseLevel = 2.0f;
-        for (int frame = 0; frame < 8; ++frame) {
-            state.seconds = frame * 0.1;
-            state.camera.eye.x = float(frame) * 0.5f;
-            const uint64_t before = context->hostBytesWritten;
-            renderOffscreenFrame(*context, renderer, offscreen, state);
-            uploads[path] = context->hostBytesWritten - before;
-        }
-        pictures[path] = readLdrPixels(*context, offscreen.targets);
-        states[path].resize(instances.size());
-        if (path == 0)
-            readbackBuffer(*context, renderer.motionStates, states[path].data(),
-                           states[path].size() * sizeof(gpu::GpuMotionState));
-        else
-            states[path] = cpuDriverStates(*renderer.cpuDriver);
-        EXPECT_GT(readFieldStats(renderer).visibleInstances, 100u);
-        destroyOffscreen(*context, offscreen);
-        destroyFieldRenderer(*context, renderer);
-    }
-    ASSERT_EQ(states[0].size(), states[1].size());
-    EXPECT_EQ(std::memcmp(states[0].data(), states[1].data(), states[0].size() * sizeof(gpu::GpuMotionState)), 0);
-    size_t differing = 0;
-    for (size_t i = 0; i < pictures[0].size(); ++i)
-        differing += std::abs(int(pictures[0][i]) - int(pictures[1][i])) > 8;
-    EXPECT_LE(differing, pictures[0].size() / 1000);
+    const PathRun gpuPath = drawOnPath(*context, field, false, 8), cpuPath = drawOnPath(*context, field, true, 8);
+    EXPECT_GT(gpuPath.stats.visibleInstances, 100u);
+    EXPECT_GT(cpuPath.stats.visibleInstances, 100u);
+    ASSERT_EQ(gpuPath.states.size(), cpuPath.states.size());
+    EXPECT_EQ(
+        std::memcmp(gpuPath.states.data(), cpuPath.states.data(), gpuPath.states.size() * sizeof(gpu::GpuMotionState)),
+        0);
+    EXPECT_LE(differingChannels(gpuPath.picture, cpuPath.picture), gpuPath.picture.size() / 1000);
     // The CPU path uploads a draw record per visible instance every frame: far more than the GPU
     // path's uniforms.
-    EXPECT_GT(uploads[1], uploads[0] + 100 * sizeof(gpu::GpuDrawInstance));
+    EXPECT_GT(cpuPath.lastFrameUpload, gpuPath.lastFrameUpload + 100 * sizeof(gpu::GpuDrawInstance));
 }
 
 // With the far field on, the CPU-driven path writes the far list and its dispatch that the cull
 // pass would, and the same splat pass draws them: the same picture, the same far instances.
 TEST_F(Gpu, CpuDrivenPathDrawsTheSameFarField) {
     const ComparisonField field = comparisonField(3.0f);
-    const std::vector<FieldClump>& clumps = field.clumps;
-    const std::vector<gpu::GpuInstance>& instances = field.instances;
-    const FieldScenery& scenery = field.scenery;
-    const Camera& camera = field.camera;
-    std::vector<uint8_t> pictures[2];
-    FieldStats stats[2];
-    for (int path = 0; path < 2; ++path) {
-        FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), scenery);
-        if (path == 1)
-            enableCpuDriver(*context, renderer, clumps, instances);
-        Offscreen offscreen = createOffscreen(*context, {160, 90});
-        FrameState state = frameState(camera, 160, 90);
-        state.wind.baseLevel = 2.0f;
-        for (int frame = 0; frame < 4; ++frame) {
-            state.seconds = frame * 0.1;
-            state.camera.eye.x = float(frame) * 0.5f;
-            renderOffscreenFrame(*context, renderer, offscreen, state);
-        }
-        pictures[path] = readLdrPixels(*context, offscreen.targets);
-        stats[path] = readFieldStats(renderer);
-        destroyOffscreen(*context, offscreen);
-        destroyFieldRenderer(*context, renderer);
-    }
-    EXPECT_GT(stats[0].farInstances, 200u);
-    EXPECT_EQ(stats[1].farInstances, stats[0].farInstances);
-    EXPECT_EQ(stats[1].farSamples, stats[0].farSamples);
-    size_t differing = 0;
-    for (size_t i = 0; i < pictures[0].size(); ++i)
-        differing += std::abs(int(pictures[0][i]) - int(pictures[1][i])) > 8;
-    EXPECT_LE(differing, pictures[0].size() / 1000);
+    const PathRun gpuPath = drawOnPath(*context, field, false, 4), cpuPath = drawOnPath(*context, field, true, 4);
+    EXPECT_GT(gpuPath.stats.farInstances, 200u);
+    EXPECT_EQ(cpuPath.stats.farInstances, gpuPath.stats.farInstances);
+    EXPECT_EQ(cpuPath.stats.farSamples, gpuPath.stats.farSamples);
+    EXPECT_LE(differingChannels(gpuPath.picture, cpuPath.picture), gpuPath.picture.size() / 1000);
 }
