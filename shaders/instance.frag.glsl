@@ -10,9 +10,8 @@ MEADOW_FRAME_BLOCK(0, 0)
 // storage buffers.
 layout(set = 0, binding = 7) uniform sampler2D atlas;
 
-layout(location = 0) in vec3 inNormal;
+layout(location = 0) in float inFacing; // n . (eye - x), interpolated
 layout(location = 1) in vec2 inUv;
-layout(location = 2) in vec3 inWorld;
 layout(location = 3) in vec3 inFront;
 layout(location = 4) in vec3 inBack;
 layout(location = 5) flat in vec4 inAlbedo;
@@ -30,7 +29,7 @@ void main() {
     if (texel.a < 0.5)
         discard;
     // The side of the sheet the camera sees: the normal's side when it faces the eye.
-    bool front = dot(inNormal, frame.cameraPosition.xyz - inWorld) >= 0.0;
+    bool front = inFacing >= 0.0;
     vec3 radiance = texel.rgb * (front ? inFront : inBack);
     // LOD colours at a fixed display brightness (exposure divided out), the sheet's far side darker.
     if (frame.motion.z == kDebugViewLod)
