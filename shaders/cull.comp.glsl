@@ -93,7 +93,7 @@ void main() {
         GpuLodChoice c = lodSelect(p, screenRadius, lodInstanceRandom(index), lodX[index]);
         lodX[index] = c.x;
         drawInstances[index] = makeDrawInstance(inst, clumps[inst.mesh], states[index], c.x, true);
-        // Below the far radius the far field replaces LOD 4 (only when the frame has one).
+        // Below the far radius the far field replaces the last mesh LOD (only when the frame has one).
         bool far = c.lod == kLodFar, farFade = c.fadeLod == kLodFar && !far;
         uint lod = min(c.lod, lodCount - 1u), fadeLod = min(c.fadeLod, lodCount - 1u);
         if (!far)

@@ -16,8 +16,9 @@ const char* const kSceneAndEngineOptionsHelp = R"(  --preset ci|full      scene 
 
 const char* const kFieldOptionsHelp =
     R"(  --far-radius PX       the far field: below this projected radius (px) a clump is drawn as
-                        surface-sample splats instead of its LOD 4 mesh, with the same
-                        crossfade as the LODs (default 0: off)
+                        surface-sample splats instead of its last mesh LOD, with the same
+                        crossfade as the LODs; a radius above a LOD's switch skips that LOD
+                        (default 0: off)
   --lod0                every clump at full detail (LOD 0), no far field: the reference the
                         levels of detail and the far field approximate
   --far-lod0            with --far-radius: the clumps the far field would take are drawn as

@@ -83,17 +83,8 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
     if (scenery.lod.farRadius > 0.0f) {
         if (scenery.lodCount != gpu::kLodSelectCount)
             throw Error("the far field follows LOD 4: it needs all five levels of detail");
-        // The far field's band must lie below LOD 4's, as each LOD's below the one before.
-        const gpu::GpuLodParams& lod = scenery.lod;
-        const float limit = lod.switchRadius[3] * (1.0f - lod.band) / (1.0f + lod.band);
-        if (!(lod.farRadius < limit)) {
-            char message[200];
-            std::snprintf(message, sizeof message,
-                          "the far radius of %g px must lie below the switch to LOD 4 (%.3g px, less its crossfade "
-                          "band: below %.3g px)",
-                          double(lod.farRadius), double(lod.switchRadius[3]), double(limit));
-            throw Error(message);
-        }
+        // A far radius at or above a mesh switch's band skips the LODs below it (lodMeshLevels):
+        // any radius is a valid choice.
         if (!(scenery.farDensity > 0.0f && scenery.farDensity <= 64.0f))
             throw Error("the far field's density of " + std::to_string(scenery.farDensity) +
                         " samples per pixel is outside (0, 64]");

@@ -34,7 +34,7 @@ inline float clamp(float x, float lo, float hi) {
 #endif
 
 MEADOW_LOD_CONST kLodSelectCount = 5; // LODs 0 .. 4
-MEADOW_LOD_CONST kLodFar = 5;         // the coordinate of an instance drawn as the far field alone
+MEADOW_LOD_CONST kLodFar = 5;         // the far field's LOD index (lod, fadeLod), past the meshes'
 
 // Values in registers only (never in a buffer: the frame carries them as GpuFrame::lodSwitchRadius
 // and lodBand), so only C++ and GLSL need to agree on the members.
@@ -43,8 +43,11 @@ struct GpuLodParams {
     float band;            // half-width of each crossfade band, relative to its radius (0 .. 0.5)
     float jitter;          // relative spread of the switch radii between instances (0 .. 0.5)
     float hysteresis;      // in LOD coordinate units (0 .. 0.5)
-    // px: below farRadius the far field (surface-sample splats, far_splat.h) replaces LOD 4, with
-    // the same jitter, band and hysteresis, up to the coordinate kLodFar; 0: no far field.
+    // px: below farRadius the far field (surface-sample splats, far_splat.h) replaces the last
+    // mesh LOD drawn, with the same jitter, band and hysteresis; 0: no far field. The mesh LODs
+    // whose switch band the far field's band does not lie wholly below are never drawn: a far
+    // radius above LOD 4's switch makes LOD 3 hand over to the far field directly
+    // (lodMeshLevels).
     float farRadius;
 };
 
@@ -71,12 +74,26 @@ MEADOW_LOD_CONST kLodFadeEntryBit = 0x80000000u;
 MEADOW_LOD_CONST kLodFarMeshEntryBit = 0x40000000u;
 MEADOW_LOD_CONST kLodEntryIndexMask = 0x3fffffffu;
 
+// How many mesh LODs are drawn (LODs 0 .. m - 1): all five without a far field; with one, those
+// whose switch band to the next lies wholly above the far field's band (the jitter scales both
+// alike, so this is the same for every instance). The far field follows LOD m - 1.
+MEADOW_LOD_FN uint lodMeshLevels(GpuLodParams p) {
+    uint m = kLodSelectCount;
+    if (p.farRadius > 0.0f)
+        for (m = 1u; m < kLodSelectCount; ++m)
+            if (!(p.farRadius * (1.0f + p.band) < p.switchRadius[m - 1u] * (1.0f - p.band)))
+                break;
+    return m;
+}
+
 // The continuous coordinate of a screen radius r for an instance whose random number is u in
-// [0, 1). Non-increasing in r. In [0, kLodSelectCount - 1], or [0, kLodFar] with a far field.
+// [0, 1). Non-increasing in r. In [0, kLodSelectCount - 1], or [0, lodMeshLevels] with a far
+// field: the coordinate counts the switches crossed, so with LOD 4 skipped the far field is 4.
 MEADOW_LOD_FN float lodCoordinate(GpuLodParams p, float r, float u) {
     float scale = 1.0f + p.jitter * (u - 0.5f);
     float x = 0.0f;
-    for (uint i = 0u; i < kLodSelectCount - 1u; ++i) {
+    uint levels = lodMeshLevels(p);
+    for (uint i = 0u; i + 1u < levels; ++i) {
         float t = p.switchRadius[i] * scale;
         // 0 above the band, 1 below it, linear across it.
         x += clamp((t * (1.0f + p.band) - r) / (2.0f * p.band * t), 0.0f, 1.0f);
@@ -88,6 +105,11 @@ MEADOW_LOD_FN float lodCoordinate(GpuLodParams p, float r, float u) {
     return x;
 }
 
+// The LOD a whole coordinate step stands for: the step past the last mesh LOD is the far field.
+MEADOW_LOD_FN uint lodAtStep(uint step, uint levels) {
+    return step >= levels ? kLodFar : step;
+}
+
 MEADOW_LOD_FN GpuLodChoice lodSelect(GpuLodParams p, float r, float u, float previousX) {
     float target = lodCoordinate(p, r, u);
     float x = target;
@@ -95,10 +117,11 @@ MEADOW_LOD_FN GpuLodChoice lodSelect(GpuLodParams p, float r, float u, float pre
     if (!plateau && abs(target - previousX) < p.hysteresis)
         x = previousX;
     GpuLodChoice c;
+    uint levels = lodMeshLevels(p), step = uint(floor(x));
     c.x = x;
-    c.lod = uint(floor(x));
+    c.lod = lodAtStep(step, levels);
     c.fade = x - floor(x);
-    c.fadeLod = c.fade > 0.0f ? min(c.lod + 1u, kLodFar) : c.lod;
+    c.fadeLod = c.fade > 0.0f ? lodAtStep(step + 1u, levels) : c.lod;
     return c;
 }
 

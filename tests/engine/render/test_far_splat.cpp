@@ -184,3 +184,47 @@ TEST(FarSplat, TheFarFieldTakesOverBelowItsRadiusLikeAnyLod) {
     c = lodSelect(p, 5.05f, 0.5f, 4.5f);
     EXPECT_EQ(c.x, 4.5f);
 }
+
+TEST(FarSplat, AFarRadiusAboveLod4sSwitchHandsLod3ToTheFarField) {
+    GpuLodParams p{};
+    const float radii[4] = {200.0f, 80.0f, 30.0f, 10.0f};
+    for (int i = 0; i < 4; ++i)
+        p.switchRadius[i] = radii[i];
+    p.band = 0.1f;
+    p.jitter = 0.3f;
+    p.hysteresis = 0.1f;
+    EXPECT_EQ(lodMeshLevels(p), 5u);
+    // 8 px: its band (7.2 .. 8.8 px) lies below LOD 4's (9 .. 11 px): every mesh LOD is drawn.
+    p.farRadius = 8.0f;
+    EXPECT_EQ(lodMeshLevels(p), 5u);
+    EXPECT_EQ(lodSelect(p, 8.95f, 0.5f, 4.0f).lod, 4u);
+    // 9 px: the bands would overlap, so LOD 4 is never drawn and LOD 3 hands over at 9 px.
+    p.farRadius = 9.0f;
+    EXPECT_EQ(lodMeshLevels(p), 4u);
+    // 20 px: the same, the switch at 20 px.
+    p.farRadius = 20.0f;
+    EXPECT_EQ(lodMeshLevels(p), 4u);
+    for (float r = 0.5f; r < 400.0f; r *= 1.05f) {
+        const GpuLodChoice c = lodSelect(p, r, 0.5f, lodCoordinate(p, r, 0.5f));
+        EXPECT_NE(c.lod, 4u) << r;
+        EXPECT_NE(c.fadeLod, 4u) << r;
+    }
+    EXPECT_EQ(lodSelect(p, 25.0f, 0.5f, 3.0f).lod, 3u);
+    GpuLodChoice c = lodSelect(p, 20.0f, 0.5f, 3.5f);
+    EXPECT_EQ(c.lod, 3u);
+    EXPECT_EQ(c.fadeLod, kLodFar);
+    EXPECT_NEAR(c.fade, 0.5f, 1e-5f);
+    c = lodSelect(p, 15.0f, 0.5f, 4.0f);
+    EXPECT_EQ(c.lod, kLodFar);
+    EXPECT_EQ(c.fadeLod, kLodFar);
+    EXPECT_EQ(c.fade, 0.0f);
+    // Jitter and hysteresis as for any switch.
+    EXPECT_NEAR(lodCoordinate(p, 20.0f * 0.85f, 0.0f), 3.5f, 1e-5f);
+    EXPECT_EQ(lodSelect(p, 20.2f, 0.5f, 3.5f).x, 3.5f);
+    // 40 px: LODs 3 and 4 both skipped.
+    p.farRadius = 40.0f;
+    EXPECT_EQ(lodMeshLevels(p), 3u);
+    c = lodSelect(p, 40.0f, 0.5f, 2.5f);
+    EXPECT_EQ(c.lod, 2u);
+    EXPECT_EQ(c.fadeLod, kLodFar);
+}

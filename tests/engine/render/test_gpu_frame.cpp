@@ -201,3 +201,24 @@ TEST_F(Gpu, CpuDrivenPathDrawsTheSameFarField) {
     EXPECT_EQ(cpuPath.stats.farSamples, gpuPath.stats.farSamples);
     EXPECT_LE(differingChannels(gpuPath.picture, cpuPath.picture), gpuPath.picture.size() / 1000);
 }
+
+// A far radius above LOD 4's switch (4 px, band 0.1: the far field's band, 4.5 to 5.5 px, does not
+// lie below LOD 4's, 3.6 to 4.4 px): LOD 3 hands over to the far field, LOD 4 is never drawn, on
+// either driving path, and both draw the same picture.
+TEST_F(Gpu, AFarRadiusAboveLod4sSwitchSkipsLod4OnBothPaths) {
+    const ComparisonField field = comparisonField(5.0f);
+    const PathRun gpuPath = drawOnPath(*context, field, false, 4), cpuPath = drawOnPath(*context, field, true, 4);
+    EXPECT_GT(gpuPath.stats.farInstances, 200u);
+    EXPECT_EQ(cpuPath.stats.farInstances, gpuPath.stats.farInstances);
+    EXPECT_EQ(cpuPath.stats.farSamples, gpuPath.stats.farSamples);
+    for (const PathRun* run : {&gpuPath, &cpuPath}) {
+        ASSERT_EQ(run->stats.visiblePerMesh.size(), field.clumps.size() * kLodCount);
+        uint32_t lod3 = 0;
+        for (size_t clump = 0; clump < field.clumps.size(); ++clump) {
+            EXPECT_EQ(run->stats.visiblePerMesh[clump * kLodCount + 4], 0u) << "clump " << clump;
+            lod3 += run->stats.visiblePerMesh[clump * kLodCount + 3];
+        }
+        EXPECT_GT(lod3, 0u);
+    }
+    EXPECT_LE(differingChannels(gpuPath.picture, cpuPath.picture), gpuPath.picture.size() / 1000);
+}
