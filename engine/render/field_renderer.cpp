@@ -184,8 +184,10 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT); // read back by the CPU-driven path
     deviceBuffer(r.drawInstances, nullptr, instances.size() * sizeof(gpu::GpuDrawInstance),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    deviceBuffer(r.lodVertices, p.lodVertices.data(), p.lodVertices.size() * sizeof(gpu::GpuLodVertex));
-    deviceBuffer(r.motionData, p.motionData.data(), p.motionData.size() * sizeof(float));
+    deviceBuffer(r.lodVertices, p.lodVertices.data(), p.lodVertices.size() * sizeof(gpu::GpuLodVertex),
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.motionData, p.motionData.data(), p.motionData.size() * sizeof(float),
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.motionGraph, p.motionGraph.data(), p.motionGraph.size() * sizeof(uint32_t));
     deviceBuffer(r.transfer, p.transfer.data(), p.transfer.size() * sizeof(float));
     deviceBuffer(r.vertexLight, nullptr, size_t(p.lightVec4s) * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
@@ -202,9 +204,13 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
         ctx, drawBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
     uploadToBuffer(ctx, r.drawCommandTemplate, p.draws.data(), drawBytes);
     deviceBuffer(r.visibleList, nullptr, size_t(p.visibleCount) * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-    deviceBuffer(r.farSamples, p.farSamples.data(), p.farSamples.size() * sizeof(gpu::GpuFarSample));
-    deviceBuffer(r.farList, nullptr, instances.size() * 2 * sizeof(uint32_t));
-    deviceBuffer(r.farDispatch, nullptr, sizeof(gpu::GpuFarDispatch), VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    deviceBuffer(r.farSamples, p.farSamples.data(), p.farSamples.size() * sizeof(gpu::GpuFarSample),
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    // (lodVertices, motionData, farSamples, farList and farDispatch are read back by the splat pass's
+    // reference test.)
+    deviceBuffer(r.farList, nullptr, instances.size() * 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.farDispatch, nullptr, sizeof(gpu::GpuFarDispatch),
+                 VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.stats, nullptr, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     r.statsReadback =
         createBuffer(ctx, sizeof(gpu::GpuCullStats) + drawBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);

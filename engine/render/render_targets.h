@@ -31,5 +31,9 @@ void destroyRenderTargets(Context& context, RenderTargets& targets);
 // half-float RGBA (linear HDR). Records and waits on its own command buffer.
 std::vector<uint8_t> readLdrPixels(Context& context, const RenderTargets& targets);
 std::vector<uint16_t> readHdrPixels(Context& context, const RenderTargets& targets);
+// After a frame with the far field (tests: the splat pass's CPU reference): the depth the mesh
+// pass left for the splats (reversed Z, row-major), and the visibility buffer the splat pass left.
+std::vector<float> readFarDepth(Context& context, const RenderTargets& targets);
+std::vector<uint64_t> readFarVisibility(Context& context, const RenderTargets& targets);
 
 } // namespace meadow
