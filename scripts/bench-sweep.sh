@@ -3,9 +3,10 @@
 # writes a table (Markdown) and a plot (PNG) of frame time and per-pass GPU time against clump
 # count, plus every run's JSON.
 #   scripts/bench-sweep.sh [--meadow BIN | --bench CMD] [--scene SCENE] [--size WxH] [--frames F]
-#                          [--out DIR] [--preset P] [COUNTS...]
+#                          [--out DIR] [--preset P] [--far-radius PX] [COUNTS...]
 # Defaults: the Release build (scripts/build.sh), 1280x720, 30 frames, bench-sweep/ in the
-# current folder, the full preset, data/scenes/irises.json, counts 10000 30000 100000 300000 1000000.
+# current folder, the full preset, data/scenes/irises.json, counts 10000 30000 100000 300000 1000000,
+# no far field (--far-radius PX: bench's option, and the table adds the far field's two passes).
 # --bench CMD runs CMD SCENE [bench options] instead of `meadow bench`: the bench runner of a
 # bundle (scripts/bundle-bench.sh) sweeps with it on a machine without meadow's build.
 set -euo pipefail
@@ -19,6 +20,7 @@ scene="$root/data/scenes/irises.json"
 bench=()
 bundled=""
 counts=()
+far=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --meadow) meadow="$2"; shift 2 ;;
@@ -28,6 +30,7 @@ while [ $# -gt 0 ]; do
     --frames) frames="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
     --preset) preset="$2"; shift 2 ;;
+    --far-radius) far=(--far-radius "$2"); shift 2 ;;
     -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
     -*) echo "bench-sweep: unknown option $1" >&2; exit 2 ;;
     *) counts+=("$1"); shift ;;
@@ -52,7 +55,7 @@ fi
 mkdir -p "$out"
 for n in "${counts[@]}"; do
   echo "bench-sweep: $n clumps at $size, $frames frames" >&2
-  "${bench[@]}" "$scene" --preset "$preset" --clumps "$n" --frames "$frames" --size "$size" \
+  "${bench[@]}" "$scene" --preset "$preset" --clumps "$n" --frames "$frames" --size "$size" "${far[@]}" \
     --json "$out/bench-$n.json" > /dev/null
 done
 
@@ -61,6 +64,8 @@ import json, sys, os
 out, counts = sys.argv[1], [int(c) for c in sys.argv[2:]]
 runs = [json.load(open(os.path.join(out, f"bench-{n}.json"))) for n in counts]
 passes = ["animate", "cull", "light", "draw", "tonemap"]
+if any("farSplat" in r["gpuMs"] for r in runs):
+    passes[4:4] = ["farSplat", "farResolve"]
 lines = [f"Device: {runs[0]['device']} ({runs[0]['vulkanDriver']}), {runs[0]['width']}x{runs[0]['height']}, "
          f"{runs[0]['frames']} frames per run, median.", "",
          "| clumps | frame ms | fps | " + " | ".join(f"{p} ms" for p in passes) +

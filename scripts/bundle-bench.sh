@@ -8,7 +8,8 @@
 #                                   run.sh --clumps 1000000 --size 1920x1080 --json out.json
 #   sweep.sh [OUT] [COUNTS...]      scripts/bench-sweep.sh at 1920x1080 from 10 thousand to a
 #                                   million clumps (JSON per run and a Markdown table in OUT,
-#                                   default ./bench-sweep; the plot where python3 has matplotlib)
+#                                   default ./bench-sweep; the plot where python3 has matplotlib);
+#                                   --far-radius PX before the counts turns the far field on
 # The bundle is a folder and a .tar.gz beside it.
 #   scripts/bundle-bench.sh [--preset full|ci] [--build-dir DIR] [--out DIR] [--no-build]
 # Defaults: the full preset, build-ci (built first with scripts/build.sh unless --no-build),
@@ -90,7 +91,7 @@ cat >"$stage/sweep.sh" <<'EOF'
 # The field-size sweep at 1920x1080 (docs/BENCHMARKS.md, The numbers meadow holds itself to):
 # meadow-bench from 10 thousand to a million clumps, 30 frames each, JSON per run and a Markdown
 # table (a plot too where matplotlib is).
-#   sweep.sh [OUT] [COUNTS...]     OUT default ./bench-sweep
+#   sweep.sh [OUT] [--far-radius PX] [COUNTS...]     OUT default ./bench-sweep
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 out="${1:-$PWD/bench-sweep}"

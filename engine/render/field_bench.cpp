@@ -57,14 +57,18 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
         uploadMax = std::max(uploadMax, uploaded);
         frameMs.push_back(t.wallMs);
         cpuMs.push_back(t.cpuRecordSubmitMs);
-        double total = 0.0;
+        double total = 0.0, far = 0.0;
         for (const PassTime& p : t.gpu) {
             passMs[p.label].push_back(p.milliseconds);
             total += p.milliseconds;
             if (p.label == "light" && renderer.lightThisFrame)
                 lightMs.push_back(p.milliseconds);
+            if (p.label == "farSplat" || p.label == "farResolve")
+                far += p.milliseconds;
         }
         passMs["total"].push_back(total);
+        if (renderer.farField)
+            passMs["far"].push_back(far); // the far field's two passes together
     }
     FieldStats stats = readFieldStats(renderer);
     j["clumps"] = renderer.instanceCount;

@@ -556,7 +556,7 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
 
 // The far field (far_splat.h): the visibility buffer emptied, every far instance's samples splatted
 // against the meshes' depth, the winners written into the HDR image (left in GENERAL layout).
-void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
+void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t, GpuTimer* timer) {
     imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kDepthAttachment,
                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, access::kComputeSampledRead,
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -572,6 +572,7 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
                   Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler), t.farVisibility});
     pushConstants(ctx, cmd, r.farSplat, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdDispatchIndirect(cmd, r.farDispatch.buffer, 0);
+    markPass(timer, cmd, "farSplat");
     barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite);
     bindPipeline(ctx, cmd, r.farResolve,
                  {r.frameUniforms, t.farVisibility, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL)});
@@ -622,8 +623,8 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     recordDrawPass(ctx, r, cmd, t);
     markPass(timer, cmd, "draw");
     if (farRuns(r)) {
-        recordFarPass(ctx, r, cmd, t);
-        markPass(timer, cmd, "far");
+        recordFarPass(ctx, r, cmd, t, timer);
+        markPass(timer, cmd, "farResolve");
     }
     recordTonemapPass(ctx, r, cmd, t);
     markPass(timer, cmd, "tonemap");

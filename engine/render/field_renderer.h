@@ -9,7 +9,8 @@
 //   -> far_splat.comp, far_resolve.comp (with a far field: far instances as surface samples)
 //   -> tonemap.comp.
 //
-// GPU timestamps bracket "animate", "cull", "light", "draw", "far" (with a far field) and "tonemap".
+// GPU timestamps bracket "animate", "cull", "light", "draw", "farSplat" and "farResolve" (with a far
+// field: the visibility buffer's fill and the splat pass, then the resolve) and "tonemap".
 #pragma once
 
 #include <array>

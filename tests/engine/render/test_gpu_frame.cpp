@@ -20,6 +20,7 @@
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 #include <random>
+#include <string>
 
 using namespace meadow;
 using namespace meadow::test;
@@ -325,4 +326,21 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
     }
     EXPECT_GT(resolved, 1000u);
     EXPECT_EQ(wrong, 0u) << "of " << resolved << " pixels the far field won";
+}
+
+// With the far field, its two passes are timed apart, between the draw and the tone map.
+TEST_F(Gpu, TimestampsBracketTheFarFieldsPasses) {
+    const ComparisonField field = comparisonField(3.0f);
+    FieldRenderer renderer = createFieldRenderer(*context, field.clumps, field.instances, testAtlas(), field.scenery);
+    Offscreen offscreen = createOffscreen(*context, {160, 90});
+    const FrameTimings t = renderOffscreenFrame(*context, renderer, offscreen, frameState(field.camera, 160, 90));
+    std::vector<std::string> labels;
+    for (const PassTime& p : t.gpu) {
+        labels.push_back(p.label);
+        EXPECT_GE(p.milliseconds, 0.0) << p.label;
+    }
+    EXPECT_EQ(labels,
+              (std::vector<std::string>{"animate", "cull", "light", "draw", "farSplat", "farResolve", "tonemap"}));
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
 }
