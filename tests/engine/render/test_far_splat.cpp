@@ -157,7 +157,10 @@ TEST(FarSplat, CoverageRandomNumbersAreUniformAndFixed) {
     EXPECT_NE(farSampleRandom(5u, 9u), farSampleRandom(6u, 9u));
 }
 
-TEST(FarSplat, TheFarFieldTakesOverBelowItsRadiusLikeAnyLod) {
+namespace {
+
+// Mesh LOD switches at 200, 80, 30 and 10 px, bands of 10 %, 30 % jitter, no far field yet.
+GpuLodParams fourSwitches() {
     GpuLodParams p{};
     const float radii[4] = {200.0f, 80.0f, 30.0f, 10.0f};
     for (int i = 0; i < 4; ++i)
@@ -165,6 +168,13 @@ TEST(FarSplat, TheFarFieldTakesOverBelowItsRadiusLikeAnyLod) {
     p.band = 0.1f;
     p.jitter = 0.3f;
     p.hysteresis = 0.1f;
+    return p;
+}
+
+} // namespace
+
+TEST(FarSplat, TheFarFieldTakesOverBelowItsRadiusLikeAnyLod) {
+    GpuLodParams p = fourSwitches();
     // Without a far field the coordinate stops at LOD 4.
     EXPECT_EQ(lodCoordinate(p, 1.0f, 0.5f), 4.0f);
     EXPECT_EQ(lodSelect(p, 1.0f, 0.5f, 4.0f).fadeLod, 4u);
@@ -186,13 +196,7 @@ TEST(FarSplat, TheFarFieldTakesOverBelowItsRadiusLikeAnyLod) {
 }
 
 TEST(FarSplat, AFarRadiusAboveLod4sSwitchHandsLod3ToTheFarField) {
-    GpuLodParams p{};
-    const float radii[4] = {200.0f, 80.0f, 30.0f, 10.0f};
-    for (int i = 0; i < 4; ++i)
-        p.switchRadius[i] = radii[i];
-    p.band = 0.1f;
-    p.jitter = 0.3f;
-    p.hysteresis = 0.1f;
+    GpuLodParams p = fourSwitches();
     EXPECT_EQ(lodMeshLevels(p), 5u);
     // 8 px: its band (7.2 .. 8.8 px) lies below LOD 4's (9 .. 11 px): every mesh LOD is drawn.
     p.farRadius = 8.0f;
