@@ -82,8 +82,18 @@ void main() {
         float area = uintBitsToFloat(clump.far.z) * scale * scale;
         float areaPerSample = area / float(count);
         float gain = coverageGain(clump, area, inst.positionScale.xyz);
+        // The eye's direction from the base in clump space (yaw undone, then the mirror), for the
+        // samples' visibility bits (far_splat.h).
+        vec3 eye = (frame.cameraPosition.xyz - inst.positionScale.xyz) * yaw;
+        if (mirrored)
+            eye -= 2.0 * dot(eye, m) * m;
+        uint instance = entry & kLodEntryIndexMask;
         for (uint k = lane; k < count; k += lanes) {
             GpuFarSample farSample = farSamples[clump.far.x + k];
+            uint bit = farVisibilityBitTowards(eye.x, eye.y, eye.z, farSampleRandom(instance, k + kFarAzimuthStream),
+                                               farSampleRandom(instance, k + kFarElevationStream));
+            if ((farSample.position.w >> bit & 1u) == 0u)
+                continue; // its own clump hides it from here
             GpuLodVertex v = lodVertices[farSample.data.w];
             uint rank = v.motion.w & 0xffffu;
             uint q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
@@ -95,7 +105,7 @@ void main() {
                     q = mix(q, motionData[q1 + r], inst.pose.z);
                 d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * q;
             }
-            vec3 p = farSample.position.xyz + d, n = unpackOctahedralNormal(farSample.data.x);
+            vec3 p = uintBitsToFloat(farSample.position.xyz) + d, n = unpackOctahedralNormal(farSample.data.x);
             if (mirrored) {
                 p -= 2.0 * dot(p, m) * m;
                 n -= 2.0 * dot(n, m) * m;
@@ -114,7 +124,7 @@ void main() {
             if (cosine < 0.0 && clump.far.w != 0u)
                 continue; // the far side of a closed surface: hidden by its near side
             float footprint = farSampleFootprint(areaPerSample, frame.lodScreen.x / clip.w, cosine) * gain;
-            if (footprint < 1.0 && farSampleRandom(entry & kLodEntryIndexMask, k) >= footprint)
+            if (footprint < 1.0 && farSampleRandom(instance, k) >= footprint)
                 continue;
             uint side = farSplatSide(footprint);
             vec2 pixel = (ndc.xy * 0.5 + 0.5) * vec2(size);

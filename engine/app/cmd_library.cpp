@@ -45,8 +45,18 @@ nlohmann::json graphAdaptations(const MotionGraph& g) {
 
 // The far field's surface samples of a clump or rock (library/far_samples.h): how many, the
 // area they cover (m^2, one side), their coverage gains (rows of sizes, columns of elevations:
-// far_splat.h) and their bytes in the FARS section.
+// far_splat.h), the share of them that their own clump leaves in sight from each elevation (over
+// its views' azimuths) and their bytes in the FARS section.
 nlohmann::json farSamplesJson(const FarSamples& far) {
+    nlohmann::json visible = nlohmann::json::array();
+    for (uint32_t elevation = 0; elevation < gpu::kFarGainElevations; ++elevation) {
+        const uint32_t azimuths = elevation + 1 < gpu::kFarGainElevations ? gpu::kFarVisibilityAzimuths : 1u;
+        size_t seen = 0;
+        for (const FarSample& s : far.samples)
+            for (uint32_t a = 0; a < azimuths; ++a)
+                seen += s.visibility >> gpu::farVisibilityBit(a, elevation) & 1u;
+        visible.push_back(far.samples.empty() ? 0.0 : double(seen) / double(far.samples.size() * azimuths));
+    }
     nlohmann::json gain = nlohmann::json::array();
     for (uint32_t size = 0; size < gpu::kFarGainSizes; ++size) {
         nlohmann::json row = nlohmann::json::array();
@@ -57,6 +67,7 @@ nlohmann::json farSamplesJson(const FarSamples& far) {
     return {{"samples", far.samples.size()},
             {"area", far.area},
             {"coverageGain", gain},
+            {"visibleShare", visible},
             {"bytes", 8 + far.gain.size() * 4 + far.samples.size() * size_t(kFarSampleBytes)}};
 }
 

@@ -86,8 +86,16 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
         const float areaPerSample = area / float(count);
         const glm::vec3 base(inst.positionScale);
         const float gain = coverageGain(frame, clump, area, base);
+        glm::vec3 eye = (glm::vec3(frame.cameraPosition) - base) * yaw;
+        if (mirrored)
+            eye -= 2.0f * glm::dot(eye, m) * m;
         for (uint32_t k = 0; k < count; ++k) {
             const gpu::GpuFarSample& farSample = at(in.farSamples, size_t(clump.far.x) + k, "far sample");
+            const uint32_t bit = gpu::farVisibilityBitTowards(
+                eye.x, eye.y, eye.z, gpu::farSampleRandom(instance, k + gpu::kFarAzimuthStream),
+                gpu::farSampleRandom(instance, k + gpu::kFarElevationStream));
+            if ((farSample.position.w >> bit & 1u) == 0u)
+                continue;
             const gpu::GpuLodVertex& v = at(in.lodVertices, farSample.data.w, "LOD vertex");
             const uint32_t rank = v.motion.w & 0xffffu;
             const uint32_t q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
@@ -101,7 +109,8 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
                                at(in.motionData, row + 2u, "motion row")) *
                      q;
             }
-            glm::vec3 p = glm::vec3(farSample.position) + d, n = unpackOctahedralNormal(farSample.data.x);
+            glm::vec3 p = glm::uintBitsToFloat(glm::uvec3(farSample.position)) + d,
+                      n = unpackOctahedralNormal(farSample.data.x);
             if (mirrored) {
                 p -= 2.0f * glm::dot(p, m) * m;
                 n -= 2.0f * glm::dot(n, m) * m;

@@ -126,8 +126,9 @@ void packFar(const FieldClump& clump, size_t clumpIndex, uint32_t lastLodBase, F
         if (s.lightVertex >= clump.mesh.vertices.size())
             throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample is lit by vertex " +
                         std::to_string(s.lightVertex) + " of " + std::to_string(clump.mesh.vertices.size()));
-        p.farSamples.push_back({glm::vec4(s.position, 0.0f), gpu::uvec4(s.normal, gpu::packRgb9e5(r, gr, b),
-                                                                        s.lightVertex, lastLodBase + slot[s.vertex])});
+        p.farSamples.push_back(
+            {gpu::uvec4(glm::floatBitsToUint(s.position), s.visibility),
+             gpu::uvec4(s.normal, gpu::packRgb9e5(r, gr, b), s.lightVertex, lastLodBase + slot[s.vertex])});
     }
     if (!clump.far.empty() && !(clump.farArea > 0.0f && std::isfinite(clump.farArea)))
         throw Error("field clump " + std::to_string(clumpIndex) + ": its far-field samples cover " +

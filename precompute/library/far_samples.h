@@ -27,6 +27,8 @@ struct FarSample {
                               // the nearest far-LOD vertex
     uint32_t lightVertex = 0; // the clump vertex (of LOD 0) whose light transfer lights the sample: the
                               // sample's triangle's nearest vertex (its normal and shadowing)
+    uint32_t visibility = gpu::kFarAllVisible; // the views from which nothing of its own clump hides
+                                               // the sample, a bit each (far_splat.h); other bits 0
 };
 
 struct FarSamples {
@@ -43,9 +45,9 @@ struct FarSamples {
     }();
 };
 
-// Bytes of one sample in the FARS section: position (3 x f32), normal, albedo, vertex, lightVertex
-// (u32 each). Each clump's or rock's entry also holds its area, gain table and count.
-inline constexpr uint32_t kFarSampleBytes = 28;
+// Bytes of one sample in the FARS section: position (3 x f32), normal, albedo, vertex, lightVertex,
+// visibility (u32 each). Each clump's or rock's entry also holds its area, gain table and count.
+inline constexpr uint32_t kFarSampleBytes = 32;
 
 // Octahedral normal encoding (Meyer et al. 2010), the same in C++ and GLSL:
 //   p = n.xy / (|n.x| + |n.y| + |n.z|);

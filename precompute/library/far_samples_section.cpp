@@ -8,7 +8,7 @@ namespace meadow {
 namespace {
 
 // Per clump or rock: f32 area, the gain table (kFarGainSizes x kFarGainElevations f32), u32 count,
-// then count x {f32 x, y, z; u32 normal, albedo, vertex, lightVertex}.
+// then count x {f32 x, y, z; u32 normal, albedo, vertex, lightVertex, visibility}.
 void writeFarSamplesOf(ByteWriter& w, const FarSamples& far) {
     w.f32(far.area);
     for (float g : far.gain)
@@ -22,6 +22,7 @@ void writeFarSamplesOf(ByteWriter& w, const FarSamples& far) {
         w.u32(s.albedo);
         w.u32(s.vertex);
         w.u32(s.lightVertex);
+        w.u32(s.visibility);
     }
 }
 
@@ -55,6 +56,11 @@ FarSamples readFarSamplesOf(ByteReader& r, size_t vertices, const std::vector<ui
         s.albedo = r.u32();
         s.vertex = r.u32();
         s.lightVertex = r.u32();
+        s.visibility = r.u32();
+        if ((s.visibility & ~gpu::kFarAllVisible) != 0u)
+            throw fail("far-field sample " + std::to_string(i) + " has visibility bits " +
+                       std::to_string(s.visibility) + " outside the " + std::to_string(gpu::kFarVisibilityTopBit + 1u) +
+                       " views");
         if (s.lightVertex >= vertices)
             throw fail("far-field sample " + std::to_string(i) + " is lit by vertex " + std::to_string(s.lightVertex) +
                        " of " + std::to_string(vertices));

@@ -19,7 +19,7 @@
 
 namespace meadow {
 
-inline constexpr uint32_t kLibraryFormatVersion = 8;
+inline constexpr uint32_t kLibraryFormatVersion = 9;
 
 uint64_t fnv1a64(const void* data, size_t size, uint64_t seed = 0xcbf29ce484222325ull);
 

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "core/random.h"
 #include "plants/atlas.h"
+#include "transfer/ray_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -56,6 +57,77 @@ void checkSurface(const FarSurface& s) {
     if (s.atlas && (s.atlas->width == 0 || s.atlas->height == 0 ||
                     s.atlas->rgba.size() != size_t(s.atlas->width) * s.atlas->height * 4))
         throw Error("far samples: the atlas is empty or has the wrong size");
+}
+
+// A direction towards the eye within visibility view (azimuth, elevation)'s cell, in clump space
+// (far_splat.h): the view's azimuth +- 22.5 degrees and elevation +- 15 degrees (kept within 0 and
+// 90), at (ja, je) in [0, 1)^2 across the cell. The calibration's views (CalibrationView) sit at
+// the cells' centres.
+glm::vec3 visibilityDirection(uint32_t azimuth, uint32_t elevation, float ja, float je) {
+    constexpr float kPi = 3.14159265358979f;
+    const float step = 0.5f * kPi / float(gpu::kFarGainElevations - 1);
+    const float a = (float(azimuth) + ja) * (0.25f * kPi);
+    const float e = std::clamp((float(elevation) + je - 0.5f) * step, 0.0f, 0.5f * kPi);
+    return glm::vec3(-std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e));
+}
+
+// Whether the atlas texel containing uv (nearest, mip 0) is kept: alpha >= 128.
+bool texelOpaque(const RgbaImage& atlas, glm::vec2 uv) {
+    const int tx = std::clamp(int(std::floor(uv.x * float(atlas.width))), 0, int(atlas.width) - 1);
+    const int ty = std::clamp(int(std::floor(uv.y * float(atlas.height))), 0, int(atlas.height) - 1);
+    return atlas.rgba[(size_t(ty) * atlas.width + size_t(tx)) * 4 + 3] >= 128;
+}
+
+// Whether the texel at the barycentrics (u, v) of triangle t is cut out of the surface.
+bool cutOutAt(const FarSurface& surface, uint32_t t, float u, float v) {
+    if (!surface.atlas)
+        return false;
+    const uint32_t* tri = &surface.indices[3 * size_t(t)];
+    const glm::vec2 uv = (1.0f - u - v) * surface.uvs[tri[0]] + u * surface.uvs[tri[1]] + v * surface.uvs[tri[2]];
+    return !texelOpaque(*surface.atlas, uv);
+}
+
+// Each sample's visibility bits: for each view, a ray from the sample towards an eye direction
+// drawn at random within the view's cell (its own for each sample and view, from `seed`), started
+// 1 mm off the surface on the eye's side and 1 mm along the ray, reaches the outside without
+// meeting an opaque texel of LOD 0 (a cut-out texel lets it through, at most 64 times). A random
+// direction rather than the cell's centre makes the bits an unbiased estimate of how much of the
+// cell sees each part of the surface: the part a view half sees keeps half its samples.
+void measureVisibility(const FarSurface& surface, std::vector<FarSample>& samples, uint64_t seed) {
+    transfer::RayScene scene(false);
+    scene.setMesh(surface.positions, surface.indices);
+    tbb::parallel_for(size_t(0), samples.size(), [&](size_t i) {
+        FarSample& sample = samples[i];
+        const glm::vec3 normal = unpackOctahedral(sample.normal);
+        Random rng(splitMix64(seed ^ 0x7669736962696c69ull) + i);
+        uint32_t bits = 0;
+        for (uint32_t e = 0; e < gpu::kFarGainElevations; ++e)
+            for (uint32_t a = 0; a < (e + 1 < gpu::kFarGainElevations ? gpu::kFarVisibilityAzimuths : 1u); ++a) {
+                // Straight down: one cell for every azimuth.
+                const bool top = e + 1 == gpu::kFarGainElevations;
+                const float ja = top ? 8.0f * rng.uniform() : rng.uniform(),
+                            je = top ? 0.5f * rng.uniform() : rng.uniform();
+                const glm::vec3 direction = visibilityDirection(a, e, ja, je);
+                const glm::vec3 side = glm::dot(normal, direction) >= 0.0f ? normal : -normal;
+                transfer::Ray ray;
+                ray.origin = sample.position + 1e-3f * side + 1e-3f * direction;
+                ray.direction = direction;
+                bool hidden = false;
+                for (int pass = 0; pass < 64; ++pass) {
+                    const transfer::RayHit hit = scene.intersect(ray);
+                    if (hit.triangle == transfer::kNoHit)
+                        break;
+                    if (!cutOutAt(surface, hit.triangle, hit.u, hit.v)) {
+                        hidden = true;
+                        break;
+                    }
+                    ray.origin += (hit.t + 1e-4f) * direction;
+                }
+                if (!hidden)
+                    bits |= 1u << gpu::farVisibilityBit(a, e);
+            }
+        sample.visibility = bits;
+    });
 }
 
 } // namespace
@@ -185,6 +257,7 @@ FarSamples buildFarSamples(const FarSurface& surface, uint32_t count, uint64_t s
         const size_t j = size_t(rng.next() % uint64_t(i));
         std::swap(far.samples[i - 1], far.samples[j]);
     }
+    measureVisibility(surface, far.samples, seed);
     return far;
 }
 
@@ -221,12 +294,6 @@ struct CalibrationView {
         return -cosElevation * up / sinElevation >= towardEye;
     }
 };
-
-bool texelOpaque(const RgbaImage& atlas, glm::vec2 uv) {
-    const int tx = std::clamp(int(std::floor(uv.x * float(atlas.width))), 0, int(atlas.width) - 1);
-    const int ty = std::clamp(int(std::floor(uv.y * float(atlas.height))), 0, int(atlas.height) - 1);
-    return atlas.rgba[(size_t(ty) * atlas.width + size_t(tx)) * 4 + 3] >= 128;
-}
 
 // LOD 0's covered pixels in a view: pixel centres inside a triangle, alpha-tested.
 size_t rasterisedCoverage(const FarSurface& surface, const CalibrationView& view) {
@@ -343,8 +410,11 @@ std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains
                 truth += double(rasterisedCoverage(surface, view));
                 std::vector<CalibrationSplat> splats;
                 splats.reserve(count);
+                const uint32_t bit = gpu::farVisibilityBit(uint32_t(a), ei);
                 for (uint32_t k = 0; k < count; ++k) {
                     const FarSample& sample = far.samples[k];
+                    if (!(sample.visibility >> bit & 1u))
+                        continue; // hidden by its own clump from this view: the splat pass skips it
                     const glm::vec3 normal = unpackOctahedral(sample.normal);
                     const float cosine = view.turn(normal).z; // towards the eye: +z of the view
                     if (cosine < 0.0f && surface.closed)

@@ -59,6 +59,12 @@ inline float farCeil(float x) {
 inline float farSqrt(float x) {
     return std::sqrt(x);
 }
+inline float farAtan2(float y, float x) {
+    return std::atan2(y, x);
+}
+inline float farAsin(float x) {
+    return std::asin(x);
+}
 #else
 #define MEADOW_FAR_CONST const uint
 #define MEADOW_FAR_FCONST const float
@@ -72,6 +78,8 @@ inline float farSqrt(float x) {
 #define farFloor(x) floor(x)
 #define farCeil(x) ceil(x)
 #define farSqrt(x) sqrt(x)
+#define farAtan2(y, x) atan(y, x)
+#define farAsin(x) asin(x)
 #endif
 
 MEADOW_FAR_CONST kFarEmpty = 0xffffffffu; // both halves of an empty visibility word
@@ -162,9 +170,17 @@ MEADOW_FAR_CONST kFarGainSizes = 5u;
 MEADOW_FAR_CONST kFarGainElevations = 4u;
 MEADOW_FAR_FCONST kFarGainFirstSize = 2.0f; // px; bin i at kFarGainFirstSize * 2^i
 // The density the gains are measured at and the run time uses by default (samples per pixel of
-// projected surface; farSampleCount).
-MEADOW_FAR_FCONST kFarDefaultDensity = 2.0f;
+// projected surface; farSampleCount). About 40 % of an iris clump's samples are in sight from any
+// view (the visibility bits below), so 5 leaves 2 for the surface that shows: enough that the gains
+// stay near 1 and each sample covers about its own share of the pixels. At 2 the gains rose to about
+// 2.3, squares of 2x2 pixels took over and the far field came out 6-11 % too bright at 1280x720
+// (docs/BENCHMARKS.md).
+MEADOW_FAR_FCONST kFarDefaultDensity = 5.0f;
 
+// The streams of the two random numbers that pick a sample's visibility view: index + stream (a
+// clump has fewer than 2^24 samples).
+MEADOW_FAR_CONST kFarAzimuthStream = 1u << 24u;
+MEADOW_FAR_CONST kFarElevationStream = 2u << 24u;
 // The random number in [0, 1) that decides whether sample `index` of far instance `instance`
 // covers its pixel: a PCG hash (Jarzynski and Olano 2020) of both, 24 bits so the float is exact.
 // The same every frame, so the far field does not shimmer.
@@ -172,6 +188,52 @@ MEADOW_FAR_FN float farSampleRandom(uint instance, uint index) {
     uint state = (instance * 1664525u + index * 2654435769u) * 747796405u + 2891336453u;
     uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
     return float(((word >> 22u) ^ word) >> 8u) * (1.0f / 16777216.0f);
+}
+
+// Self-occlusion (docs/ARCHITECTURE.md, The far field). LOD 0 shows only the surface that nothing
+// of its own clump hides; the splats, which cover their pixels with a probability, let every sample
+// show through the ones in front of it. Where a clump is a few pixels across, its leaves and
+// petals pile up in each pixel, so the far field showed the inner, lower, shadowed parts and the
+// back sides of leaves about as often as the outer ones, and looked dark (docs/BENCHMARKS.md). Each
+// sample therefore carries the directions from which it is seen from outside its clump, measured
+// in the precompute by casting a ray towards each of the coverage gains' views (the 8 azimuths of
+// the lower 3 elevations, and straight down) against LOD 0, its cut-out texels let through. A bit
+// per view:
+//   - azimuth a (0..7, at (a + 1/2) x 45 degrees about +y) and elevation e (0..2, at e x 30
+//     degrees): bit e x 8 + a;
+//   - straight down (90 degrees, the same from every azimuth): bit 24.
+// The direction towards the eye of view (a, e) in clump space is (-sin A cos E, sin E, cos A cos E).
+// A sample that is hidden from the view nearest the instance's eye direction is not drawn; which
+// of the two views around that direction (in azimuth and in elevation) decides is chosen per sample
+// at random, in proportion to the eye's nearness to each, so that a moving camera hands samples
+// from one view to the next one by one instead of all at once.
+MEADOW_FAR_CONST kFarVisibilityAzimuths = 8u;
+MEADOW_FAR_CONST kFarVisibilityTopBit = 24u;
+MEADOW_FAR_CONST kFarAllVisible = 0x1ffffffu; // bits 0..24
+
+// The bit of view (azimuth, elevation), elevation in 0..kFarGainElevations - 1.
+MEADOW_FAR_FN uint farVisibilityBit(uint azimuth, uint elevation) {
+    return elevation + 1u >= kFarGainElevations ? kFarVisibilityTopBit : elevation * kFarVisibilityAzimuths + azimuth;
+}
+
+// The bit that decides a sample's visibility: (dx, dy, dz) is the direction from the instance's
+// base towards the eye in clump space (any length, not 0), r1 and r2 the sample's two random
+// numbers in [0, 1) (farSampleRandom) that pick between the views either side of it.
+MEADOW_FAR_FN uint farVisibilityBitTowards(float dx, float dy, float dz, float r1, float r2) {
+    float horizontal = farSqrt(dx * dx + dz * dz);
+    float length = farSqrt(horizontal * horizontal + dy * dy);
+    float sinElevation = farMin(farMax(dy / farMax(length, 1e-20f), 0.0f), 1.0f);
+    float e = farMin(farAsin(sinElevation) * (6.0f / 3.14159265f), float(kFarGainElevations - 1u));
+    float e0 = farFloor(e);
+    uint elevation = uint(e0) + (r2 < e - e0 ? 1u : 0u);
+    elevation = elevation < kFarGainElevations ? elevation : kFarGainElevations - 1u;
+    // Azimuth A from (-sin A, cos A) = (dx, dz) / horizontal; view a sits at a + 1/2 in units of
+    // 45 degrees.
+    float a = farAtan2(-dx, dz) * (4.0f / 3.14159265f) - 0.5f;
+    a = a - 8.0f * farFloor(a * 0.125f);
+    float a0 = farFloor(a);
+    uint azimuth = (uint(a0) + (r1 < a - a0 ? 1u : 0u)) % kFarVisibilityAzimuths;
+    return farVisibilityBit(azimuth, elevation);
 }
 
 #ifdef __cplusplus
@@ -185,6 +247,8 @@ MEADOW_FAR_FN float farSampleRandom(uint instance, uint index) {
 #undef farFloor
 #undef farCeil
 #undef farSqrt
+#undef farAtan2
+#undef farAsin
 #endif
 #undef MEADOW_FAR_CONST
 #undef MEADOW_FAR_FCONST

@@ -114,9 +114,10 @@ struct GpuClump {
 // One surface sample of a clump for the far field (precompute/library/far_samples.h), as the
 // splat pass reads it (32 bytes).
 struct GpuFarSample {
-    vec4 position; // xyz clump space at the mean pose, w unused
-    uvec4 data;    // x normal (octahedral snorm16 pair), y linear albedo (RGB9E5, far_splat.h), z the clump vertex
-                   // whose light it takes, w the GpuLodVertex of the last LOD whose motion it follows
+    uvec4 position; // xyz the bits of its clump-space position at the mean pose (floats), w the views
+                    // from which its own clump does not hide it (far_splat.h)
+    uvec4 data;     // x normal (octahedral snorm16 pair), y linear albedo (RGB9E5, far_splat.h), z the clump vertex
+                    // whose light it takes, w the GpuLodVertex of the last LOD whose motion it follows
 };
 
 // One vertex of a clump's LOD mesh, pulled by gl_VertexIndex: the clump vertex at its mean pose

@@ -157,6 +157,39 @@ TEST(FarSplat, CoverageRandomNumbersAreUniformAndFixed) {
     EXPECT_NE(farSampleRandom(5u, 9u), farSampleRandom(6u, 9u));
 }
 
+// The view that decides a sample's visibility (far_splat.h): an eye exactly in a view's direction
+// picks that view whatever the random numbers; straight above picks the top bit; between two views
+// the random number picks each in proportion to the eye's nearness to it.
+TEST(FarSplat, VisibilityViewFollowsTheEyesDirection) {
+    for (uint e = 0; e + 1 < kFarGainElevations; ++e)
+        for (uint a = 0; a < kFarVisibilityAzimuths; ++a) {
+            const float az = (float(a) + 0.5f) * 0.78539816f, el = float(e) * 0.52359878f;
+            for (float r : {0.01f, 0.5f, 0.99f}) // (rounding may put the eye a hair off the view)
+                EXPECT_EQ(farVisibilityBitTowards(-std::sin(az) * std::cos(el) * 3.0f, std::sin(el) * 3.0f,
+                                                  std::cos(az) * std::cos(el) * 3.0f, r, r),
+                          e * 8u + a)
+                    << a << " " << e << " " << r;
+        }
+    EXPECT_EQ(farVisibilityBitTowards(0.0f, 2.0f, 0.0f, 0.3f, 0.7f), kFarVisibilityTopBit);
+    EXPECT_EQ(farVisibilityBitTowards(0.01f, 2.0f, 0.0f, 0.3f, 0.7f), kFarVisibilityTopBit);
+    // Below the horizon counts as level.
+    EXPECT_EQ(farVisibilityBitTowards(-std::sin(0.3927f), -0.5f, std::cos(0.3927f), 0.9f, 0.9f), 0u);
+    // A quarter of the way from view 1 (67.5 degrees) to view 2 (112.5), level: view 2 for a
+    // quarter of the random numbers.
+    const float az = 78.75f * 0.017453293f;
+    uint second = 0;
+    for (uint i = 0; i < 1000; ++i) {
+        const uint bit = farVisibilityBitTowards(-std::sin(az), 0.0f, std::cos(az), (float(i) + 0.5f) / 1000.0f, 0.0f);
+        ASSERT_TRUE(bit == 1u || bit == 2u) << bit;
+        second += bit == 2u;
+    }
+    EXPECT_NEAR(double(second), 250.0, 2.0);
+    // Past the last view the next is the first again (337.5 -> 22.5 degrees).
+    const float wrap = 0.0f; // 360 degrees: halfway between views 7 and 0
+    EXPECT_EQ(farVisibilityBitTowards(-std::sin(wrap), 0.0f, std::cos(wrap), 0.2f, 0.0f), 0u);
+    EXPECT_EQ(farVisibilityBitTowards(-std::sin(wrap), 0.0f, std::cos(wrap), 0.8f, 0.0f), 7u);
+}
+
 namespace {
 
 // Mesh LOD switches at 200, 80, 30 and 10 px, bands of 10 %, 30 % jitter, no far field yet.

@@ -47,7 +47,7 @@ TEST(LibraryFile, GoldenBytesPinTheFormat) {
     writeLibraryFile(p, lib);
     std::vector<uint8_t> bytes = readAll(p);
     ASSERT_EQ(bytes.size(), 32u + 32u + 2u);
-    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 8, 0, 0, 0, 1, 0, 0, 0};
+    const uint8_t header[16] = {'M', 'E', 'A', 'D', 'O', 'W', 'L', 'B', 9, 0, 0, 0, 1, 0, 0, 0};
     EXPECT_EQ(std::vector<uint8_t>(bytes.begin(), bytes.begin() + 16), std::vector<uint8_t>(header, header + 16));
     EXPECT_EQ(bytes[16], 0x08); // inputHash, little-endian
     EXPECT_EQ(bytes[23], 0x01);

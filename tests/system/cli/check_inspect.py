@@ -31,7 +31,10 @@ for c in j["clumps"]:
 # with their coverage gains (5 sizes of 4 elevations, 4 bytes each): positive, and for rocks (closed
 # solids, whose independent splats leave holes) above 1 once they span pixels.
 for far in [c["far"] for c in j["clumps"]] + [r["far"] for r in j["rocks"]]:
-    assert far["samples"] == 1024 and far["area"] > 0 and far["bytes"] == 8 + 4 * 20 + 28 * 1024, far
+    assert far["samples"] == 1024 and far["area"] > 0 and far["bytes"] == 8 + 4 * 20 + 32 * 1024, far
+    # Self-occlusion (far_splat.h): from every elevation some samples are hidden by their own clump
+    # or rock and some are in sight.
+    assert len(far["visibleShare"]) == 4 and all(0.05 < v < 0.95 for v in far["visibleShare"]), far
     gain = far["coverageGain"]
     assert len(gain) == 5 and all(len(row) == 4 and all(0 < g < 16 for g in row) for row in gain), far
 for rock in j["rocks"]:
