@@ -41,23 +41,6 @@ vec3 unpackOctahedralNormal(uint packed) {
     return normalize(n);
 }
 
-// The instance's coverage gain (far_splat.h): its clump's table at the instance's size (the square
-// root of its surface in pixels, at its base's depth) and the eye's elevation above it, bilinear.
-float coverageGain(GpuClump clump, float area, vec3 base) {
-    float w = max((frame.viewProj * vec4(base, 1.0)).w, 1e-3);
-    float size = sqrt(area) * frame.lodScreen.x / w;
-    vec3 toEye = frame.cameraPosition.xyz - base;
-    float sinElevation = clamp(toEye.y / max(length(toEye), 1e-6), 0.0, 1.0);
-    float s = clamp(log2(max(size, 1e-6) / kFarGainFirstSize), 0.0, float(kFarGainSizes - 1u));
-    float e = asin(sinElevation) / (0.5 * kPi) * float(kFarGainElevations - 1u);
-    uint s0 = uint(s), e0 = min(uint(e), kFarGainElevations - 1u);
-    uint s1 = min(s0 + 1u, kFarGainSizes - 1u), e1 = min(e0 + 1u, kFarGainElevations - 1u);
-    float fs = s - float(s0), fe = e - float(e0);
-    float g0 = mix(clump.farGain[s0][e0], clump.farGain[s0][e1], fe);
-    float g1 = mix(clump.farGain[s1][e0], clump.farGain[s1][e1], fe);
-    return mix(g0, g1, fs);
-}
-
 void main() {
     uint total = farDispatch.count;
     ivec2 size = ivec2(frame.lodScreen.zw);
@@ -81,17 +64,21 @@ void main() {
         // Each drawn sample stands for an equal share of the surface (stochastic pruning).
         float area = uintBitsToFloat(clump.far.z) * scale * scale;
         float areaPerSample = area / float(count);
-        float gain = coverageGain(clump, area, inst.positionScale.xyz);
-        // The eye's direction from the base in clump space (yaw undone, then the mirror), for the
-        // samples' visibility bits (far_splat.h).
-        vec3 eye = (frame.cameraPosition.xyz - inst.positionScale.xyz) * yaw;
+        // The eye's elevation above the base and, in clump space (yaw undone, then the mirror), its
+        // azimuth: for the coverage gain and the samples' visibility bits (far_splat.h).
+        vec3 toBase = frame.cameraPosition.xyz - inst.positionScale.xyz;
+        float elevation = farEyeElevation(toBase.x, toBase.y, toBase.z);
+        float baseW = max((frame.viewProj * vec4(inst.positionScale.xyz, 1.0)).w, 1e-3);
+        float gain = farCoverageGain(clump, sqrt(area) * frame.lodScreen.x / baseW, elevation);
+        vec3 eye = toBase * yaw;
         if (mirrored)
             eye -= 2.0 * dot(eye, m) * m;
+        float azimuth = farEyeAzimuth(eye.x, eye.z);
         uint instance = entry & kLodEntryIndexMask;
         for (uint k = lane; k < count; k += lanes) {
             GpuFarSample farSample = farSamples[clump.far.x + k];
-            uint bit = farVisibilityBitTowards(eye.x, eye.y, eye.z, farSampleRandom(instance, k + kFarAzimuthStream),
-                                               farSampleRandom(instance, k + kFarElevationStream));
+            uint bit = farVisibilityBitAt(azimuth, elevation, farSampleRandom(instance, k + kFarAzimuthStream),
+                                          farSampleRandom(instance, k + kFarElevationStream));
             if ((farSample.position.w >> bit & 1u) == 0u)
                 continue; // its own clump hides it from here
             GpuLodVertex v = lodVertices[farSample.data.w];

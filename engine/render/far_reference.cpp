@@ -29,24 +29,6 @@ glm::vec3 unpackOctahedralNormal(uint32_t packed) {
     return glm::normalize(n);
 }
 
-// far_splat.comp's coverageGain: the clump's table at the instance's size and eye elevation.
-float coverageGain(const gpu::GpuFrame& frame, const gpu::GpuClump& clump, float area, glm::vec3 base) {
-    const float w = std::max((frame.viewProj * glm::vec4(base, 1.0f)).w, 1e-3f);
-    const float size = std::sqrt(area) * frame.lodScreen.x / w;
-    const glm::vec3 toEye = glm::vec3(frame.cameraPosition) - base;
-    const float sinElevation = std::clamp(toEye.y / std::max(glm::length(toEye), 1e-6f), 0.0f, 1.0f);
-    const float s =
-        std::clamp(std::log2(std::max(size, 1e-6f) / gpu::kFarGainFirstSize), 0.0f, float(gpu::kFarGainSizes - 1u));
-    const float e = std::asin(sinElevation) / (0.5f * kPi) * float(gpu::kFarGainElevations - 1u);
-    const uint32_t s0 = uint32_t(s), e0 = std::min(uint32_t(e), gpu::kFarGainElevations - 1u);
-    const uint32_t s1 = std::min(s0 + 1u, gpu::kFarGainSizes - 1u),
-                   e1 = std::min(e0 + 1u, gpu::kFarGainElevations - 1u);
-    const float fs = s - float(s0), fe = e - float(e0);
-    const float g0 = glm::mix(clump.farGain[s0][int(e0)], clump.farGain[s0][int(e1)], fe);
-    const float g1 = glm::mix(clump.farGain[s1][int(e0)], clump.farGain[s1][int(e1)], fe);
-    return glm::mix(g0, g1, fs);
-}
-
 template <typename T> const T& at(const std::vector<T>& values, size_t index, const char* what) {
     if (index >= values.size())
         throw Error(std::string("farSplatReference: ") + what + " index " + std::to_string(index) + " is outside its " +
@@ -85,15 +67,19 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
         const float area = clumpArea * scale * scale;
         const float areaPerSample = area / float(count);
         const glm::vec3 base(inst.positionScale);
-        const float gain = coverageGain(frame, clump, area, base);
-        glm::vec3 eye = (glm::vec3(frame.cameraPosition) - base) * yaw;
+        const glm::vec3 toBase = glm::vec3(frame.cameraPosition) - base;
+        const float elevation = gpu::farEyeElevation(toBase.x, toBase.y, toBase.z);
+        const float baseW = std::max((frame.viewProj * glm::vec4(base, 1.0f)).w, 1e-3f);
+        const float gain = gpu::farCoverageGain(clump, std::sqrt(area) * frame.lodScreen.x / baseW, elevation);
+        glm::vec3 eye = toBase * yaw;
         if (mirrored)
             eye -= 2.0f * glm::dot(eye, m) * m;
+        const float azimuth = gpu::farEyeAzimuth(eye.x, eye.z);
         for (uint32_t k = 0; k < count; ++k) {
             const gpu::GpuFarSample& farSample = at(in.farSamples, size_t(clump.far.x) + k, "far sample");
-            const uint32_t bit = gpu::farVisibilityBitTowards(
-                eye.x, eye.y, eye.z, gpu::farSampleRandom(instance, k + gpu::kFarAzimuthStream),
-                gpu::farSampleRandom(instance, k + gpu::kFarElevationStream));
+            const uint32_t bit =
+                gpu::farVisibilityBitAt(azimuth, elevation, gpu::farSampleRandom(instance, k + gpu::kFarAzimuthStream),
+                                        gpu::farSampleRandom(instance, k + gpu::kFarElevationStream));
             if ((farSample.position.w >> bit & 1u) == 0u)
                 continue;
             const gpu::GpuLodVertex& v = at(in.lodVertices, farSample.data.w, "LOD vertex");

@@ -23,6 +23,8 @@
 #ifndef MEADOW_FAR_SPLAT_H
 #define MEADOW_FAR_SPLAT_H
 
+#include "gpu_types.h"
+
 #ifdef __cplusplus
 #include <cmath>
 #include <cstdint>
@@ -65,6 +67,15 @@ inline float farAtan2(float y, float x) {
 inline float farAsin(float x) {
     return std::asin(x);
 }
+inline float farLog2(float x) {
+    return std::log2(x);
+}
+inline float farMix(float a, float b, float t) {
+    return a * (1.0f - t) + b * t; // glm::mix's
+}
+inline int farIndex(uint i) {
+    return int(i); // glm::vec4's components are indexed by int
+}
 #else
 #define MEADOW_FAR_CONST const uint
 #define MEADOW_FAR_FCONST const float
@@ -80,6 +91,9 @@ inline float farAsin(float x) {
 #define farSqrt(x) sqrt(x)
 #define farAtan2(y, x) atan(y, x)
 #define farAsin(x) asin(x)
+#define farLog2(x) log2(x)
+#define farMix(a, b, t) mix(a, b, t)
+#define farIndex(i) (i)
 #endif
 
 MEADOW_FAR_CONST kFarEmpty = 0xffffffffu; // both halves of an empty visibility word
@@ -216,24 +230,52 @@ MEADOW_FAR_FN uint farVisibilityBit(uint azimuth, uint elevation) {
     return elevation + 1u >= kFarGainElevations ? kFarVisibilityTopBit : elevation * kFarVisibilityAzimuths + azimuth;
 }
 
-// The bit that decides a sample's visibility: (dx, dy, dz) is the direction from the instance's
-// base towards the eye in clump space (any length, not 0), r1 and r2 the sample's two random
-// numbers in [0, 1) (farSampleRandom) that pick between the views either side of it.
-MEADOW_FAR_FN uint farVisibilityBitTowards(float dx, float dy, float dz, float r1, float r2) {
-    float horizontal = farSqrt(dx * dx + dz * dz);
-    float length = farSqrt(horizontal * horizontal + dy * dy);
+// The eye's elevation above an instance's base, in units of 30 degrees (the views' and the gain
+// table's elevation bins), 0 to kFarGainElevations - 1: (dx, dy, dz) is the direction from the
+// base towards the eye, any length (world or clump space: turning about y and mirroring in a
+// vertical plane leave it the same). Once per instance; farVisibilityBitAt and farCoverageGain take
+// it.
+MEADOW_FAR_FN float farEyeElevation(float dx, float dy, float dz) {
+    float length = farSqrt(dx * dx + dy * dy + dz * dz);
     float sinElevation = farMin(farMax(dy / farMax(length, 1e-20f), 0.0f), 1.0f);
-    float e = farMin(farAsin(sinElevation) * (6.0f / 3.14159265f), float(kFarGainElevations - 1u));
-    float e0 = farFloor(e);
-    uint elevation = uint(e0) + (r2 < e - e0 ? 1u : 0u);
-    elevation = elevation < kFarGainElevations ? elevation : kFarGainElevations - 1u;
-    // Azimuth A from (-sin A, cos A) = (dx, dz) / horizontal; view a sits at a + 1/2 in units of
-    // 45 degrees.
+    return farMin(farAsin(sinElevation) * (6.0f / 3.14159265f), float(kFarGainElevations - 1u));
+}
+
+// The eye's azimuth about an instance's base in clump space, in units of 45 degrees from view 0's
+// centre, in [0, 8): (dx, dz) is the horizontal part of the direction from the base towards the eye
+// with the instance's yaw and mirror undone. Azimuth A is where (-sin A, cos A) = (dx, dz) /
+// length; view a sits at a + 1/2. Once per instance.
+MEADOW_FAR_FN float farEyeAzimuth(float dx, float dz) {
     float a = farAtan2(-dx, dz) * (4.0f / 3.14159265f) - 0.5f;
-    a = a - 8.0f * farFloor(a * 0.125f);
-    float a0 = farFloor(a);
-    uint azimuth = (uint(a0) + (r1 < a - a0 ? 1u : 0u)) % kFarVisibilityAzimuths;
-    return farVisibilityBit(azimuth, elevation);
+    return a - 8.0f * farFloor(a * 0.125f);
+}
+
+// The bit that decides a sample's visibility, from the instance's eye azimuth and elevation
+// (farEyeAzimuth, farEyeElevation) and the sample's two random numbers r1 and r2 in [0, 1)
+// (farSampleRandom, kFarAzimuthStream and kFarElevationStream), which pick between the views
+// either side of the eye in proportion to its nearness to each.
+MEADOW_FAR_FN uint farVisibilityBitAt(float azimuth, float elevation, float r1, float r2) {
+    float e0 = farFloor(elevation);
+    uint e = uint(e0) + (r2 < elevation - e0 ? 1u : 0u);
+    e = e < kFarGainElevations ? e : kFarGainElevations - 1u;
+    float a0 = farFloor(azimuth);
+    uint a = (uint(a0) + (r1 < azimuth - a0 ? 1u : 0u)) % kFarVisibilityAzimuths;
+    return farVisibilityBit(a, e);
+}
+
+// An instance's coverage gain: its clump's table (GpuClump::farGain) at its size (`size`, the
+// square root of its surface in pixels at its base's depth) and the eye's elevation above it
+// (farEyeElevation), bilinear; the sizes clamp to the table's ends.
+MEADOW_FAR_FN float farCoverageGain(GpuClump clump, float size, float elevation) {
+    float s = farMin(farMax(farLog2(farMax(size, 1e-6f) / kFarGainFirstSize), 0.0f), float(kFarGainSizes - 1u));
+    uint s0 = uint(s), e0 = uint(elevation);
+    e0 = e0 < kFarGainElevations ? e0 : kFarGainElevations - 1u;
+    uint s1 = s0 + 1u < kFarGainSizes ? s0 + 1u : kFarGainSizes - 1u;
+    uint e1 = e0 + 1u < kFarGainElevations ? e0 + 1u : kFarGainElevations - 1u;
+    float fs = s - float(s0), fe = elevation - float(e0);
+    float g0 = farMix(clump.farGain[s0][farIndex(e0)], clump.farGain[s0][farIndex(e1)], fe);
+    float g1 = farMix(clump.farGain[s1][farIndex(e0)], clump.farGain[s1][farIndex(e1)], fe);
+    return farMix(g0, g1, fs);
 }
 
 #ifdef __cplusplus
@@ -249,6 +291,9 @@ MEADOW_FAR_FN uint farVisibilityBitTowards(float dx, float dy, float dz, float r
 #undef farSqrt
 #undef farAtan2
 #undef farAsin
+#undef farLog2
+#undef farMix
+#undef farIndex
 #endif
 #undef MEADOW_FAR_CONST
 #undef MEADOW_FAR_FCONST

@@ -160,6 +160,12 @@ TEST(FarSplat, CoverageRandomNumbersAreUniformAndFixed) {
 // The view that decides a sample's visibility (far_splat.h): an eye exactly in a view's direction
 // picks that view whatever the random numbers; straight above picks the top bit; between two views
 // the random number picks each in proportion to the eye's nearness to it.
+namespace {
+uint farVisibilityBitTowards(float dx, float dy, float dz, float r1, float r2) {
+    return farVisibilityBitAt(farEyeAzimuth(dx, dz), farEyeElevation(dx, dy, dz), r1, r2);
+}
+} // namespace
+
 TEST(FarSplat, VisibilityViewFollowsTheEyesDirection) {
     for (uint e = 0; e + 1 < kFarGainElevations; ++e)
         for (uint a = 0; a < kFarVisibilityAzimuths; ++a) {
@@ -188,6 +194,27 @@ TEST(FarSplat, VisibilityViewFollowsTheEyesDirection) {
     const float wrap = 0.0f; // 360 degrees: halfway between views 7 and 0
     EXPECT_EQ(farVisibilityBitTowards(-std::sin(wrap), 0.0f, std::cos(wrap), 0.2f, 0.0f), 0u);
     EXPECT_EQ(farVisibilityBitTowards(-std::sin(wrap), 0.0f, std::cos(wrap), 0.8f, 0.0f), 7u);
+}
+
+// The coverage gain's table (far_splat.h): exact at its bins, linear between them in log2 of the
+// size and in the elevation's 30-degree units, clamped at both ends.
+TEST(FarSplat, CoverageGainInterpolatesItsTable) {
+    GpuClump clump{};
+    for (uint size = 0; size < kFarGainSizes; ++size)
+        for (uint e = 0; e < kFarGainElevations; ++e)
+            clump.farGain[size][int(e)] = 1.0f + float(size) + 0.25f * float(e);
+    for (uint size = 0; size < kFarGainSizes; ++size)
+        for (uint e = 0; e < kFarGainElevations; ++e)
+            EXPECT_FLOAT_EQ(farCoverageGain(clump, kFarGainFirstSize * float(1u << size), float(e)),
+                            1.0f + float(size) + 0.25f * float(e))
+                << size << " " << e;
+    EXPECT_NEAR(farCoverageGain(clump, kFarGainFirstSize * std::sqrt(2.0f), 1.5f), 1.5f + 0.375f, 1e-5f);
+    EXPECT_FLOAT_EQ(farCoverageGain(clump, 0.1f, 0.0f), 1.0f);     // smaller than the first bin
+    EXPECT_FLOAT_EQ(farCoverageGain(clump, 1000.0f, 3.0f), 5.75f); // larger than the last
+    // The elevation of an eye straight above is the table's last column, from any side.
+    EXPECT_FLOAT_EQ(farEyeElevation(0.0f, 2.0f, 0.0f), 3.0f);
+    EXPECT_FLOAT_EQ(farEyeElevation(1.0f, -1.0f, 0.0f), 0.0f);
+    EXPECT_NEAR(farEyeElevation(std::cos(0.5235988f), std::sin(0.5235988f), 0.0f), 1.0f, 1e-5f);
 }
 
 namespace {
