@@ -10,29 +10,30 @@ MEADOW_FRAME_BLOCK(0, 0)
 // storage buffers.
 layout(set = 0, binding = 7) uniform sampler2D atlas;
 
-layout(location = 0) in float inFacing; // n . (eye - x), interpolated
-layout(location = 1) in vec2 inUv;
-layout(location = 3) in vec3 inFront;
-layout(location = 4) in vec3 inBack;
-layout(location = 5) flat in vec4 inAlbedo;
-layout(location = 6) flat in float inFade;
-layout(location = 7) flat in uint inIsFadeLod;
-layout(location = 8) flat in uint inLod;
+layout(location = 0) in vec3 inUvFacing; // uv, n . (eye - x) interpolated
+layout(location = 1) in vec3 inFront;
+layout(location = 2) in vec3 inBack;
+layout(location = 3) flat in uvec4 inClump; // constant albedo bits, facts (common.glsl's kClump*)
 layout(location = 0) out vec4 outColor;
 
 
 void main() {
     // A crossfading instance draws in two LODs with complementary dither masks (lod_select.h).
-    if (inFade > 0.0 && !lodDitherKeeps(inIsFadeLod != 0u, inFade, uint(gl_FragCoord.x), uint(gl_FragCoord.y)))
+    uint facts = inClump.w;
+    if ((facts & kClumpFadingBit) != 0u &&
+        !lodDitherKeepsLevel((facts & kClumpFadeLodBit) != 0u, facts & kClumpDitherLevelMask, uint(gl_FragCoord.x),
+                             uint(gl_FragCoord.y)))
         discard;
-    vec4 texel = inAlbedo.w > 0.5 ? vec4(inAlbedo.rgb, 1.0) : texture(atlas, inUv);
+    vec4 texel = (facts & kClumpConstantAlbedoBit) != 0u ? vec4(uintBitsToFloat(inClump.xyz), 1.0)
+                                                         : texture(atlas, inUvFacing.xy);
     if (texel.a < 0.5)
         discard;
     // The side of the sheet the camera sees: the normal's side when it faces the eye.
-    bool front = inFacing >= 0.0;
+    bool front = inUvFacing.z >= 0.0;
     vec3 radiance = texel.rgb * (front ? inFront : inBack);
     // LOD colours at a fixed display brightness (exposure divided out), the sheet's far side darker.
     if (frame.motion.z == kDebugViewLod)
-        radiance = kLodViewColors[min(inLod, kLodFar)] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
+        radiance = kLodViewColors[min(facts >> kClumpLodShift, kLodFar)] * (front ? 1.0 : 0.6) /
+                   max(frame.skyZenith.w, 1e-6);
     outColor = vec4(radiance, 1.0);
 }

@@ -22,29 +22,26 @@ layout(set = 0, binding = 6, std430) readonly buffer VertexLight { uvec4 vertexL
 // still sways downwind (placement/instance.h).
 layout(push_constant) uniform InstanceParams { vec4 mirrorNormal; };
 
-// Which side of the sheet faces the eye, interpolated: n . (eye - x) at each vertex. (Cheaper than
-// the normal and position it replaces: lavapipe clips and sets up every varying of every triangle
-// on one thread. The sign differs from the per-pixel test only on a few pixels of sheets seen edge
-// on: 0.003 % of a 960x540 frame.)
-layout(location = 0) out float outFacing;
-layout(location = 1) out vec2 outUv;
-layout(location = 3) out vec3 outFront; // irradiance / pi of the side the normal points to
-layout(location = 4) out vec3 outBack;
-layout(location = 5) flat out vec4 outAlbedo; // w 1: constant albedo instead of the atlas
-// The crossfade (lod_select.h): this draw's share and whether it is the instance's fadeLod.
-layout(location = 6) flat out float outFade;
-layout(location = 7) flat out uint outIsFadeLod;
-layout(location = 8) flat out uint outLod;
+// The varyings, in as few slots as they fit (lavapipe clips and sets up every slot of every
+// triangle on one thread; each slot costs about as much as a vec4):
+//   - uv, then which side of the sheet faces the eye, interpolated: n . (eye - x) at each vertex.
+//     (Cheaper than the normal and position it replaces. The sign differs from the per-pixel test
+//     only on a few pixels of sheets seen edge on: 0.003 % of a 960x540 frame.)
+//   - irradiance / pi of the side the normal points to, and of the other side;
+//   - flat: the constant albedo's float bits (xyz) and the draw's facts (w, common.glsl's kClump*).
+layout(location = 0) out vec3 outUvFacing;
+layout(location = 1) out vec3 outFront;
+layout(location = 2) out vec3 outBack;
+layout(location = 3) flat out uvec4 outClump;
 
 void main() {
     uint entry = visible[gl_InstanceIndex];
     GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
-    outFade = inst.pose.w;
-    outIsFadeLod = (entry & kLodFadeEntryBit) != 0u ? 1u : 0u;
+    float fade = inst.pose.w;
 
     GpuLodVertex v = lodVertices[gl_VertexIndex];
     uint rank = v.motion.w & 0xffffu;
-    outLod = (entry & kLodFarMeshEntryBit) != 0u ? kLodFar : v.motion.w >> 16u;
+    uint lod = (entry & kLodFarMeshEntryBit) != 0u ? kLodFar : v.motion.w >> 16u;
 
     // x̄ + U q, q blended across a graph jump (motion_step.h): the old path's weight fades from 1.
     // (Vertex shading is lavapipe's single-threaded stage: loads are what it pays for, so the old
@@ -83,7 +80,10 @@ void main() {
     mat3 yaw = mat3(c, 0.0, -s, 0.0, 1.0, 0.0, s, 0.0, c);
     vec3 world = inst.positionScale.xyz + yaw * (p * abs(inst.positionScale.w));
     gl_Position = frame.viewProj * vec4(world, 1.0);
-    outFacing = dot(yaw * n, frame.cameraPosition.xyz - world);
-    outUv = vec2(v.positionU.w, v.normalV.w);
-    outAlbedo = clumps[inst.offsets.w >> 16u].albedo;
+    outUvFacing = vec3(v.positionU.w, v.normalV.w, dot(yaw * n, frame.cameraPosition.xyz - world));
+    vec4 albedo = clumps[inst.offsets.w >> 16u].albedo; // w 1: constant albedo instead of the atlas
+    uint facts = lodDitherLevel(fade) | ((entry & kLodFadeEntryBit) != 0u ? kClumpFadeLodBit : 0u) |
+                 (fade > 0.0 ? kClumpFadingBit : 0u) | (albedo.w > 0.5 ? kClumpConstantAlbedoBit : 0u) |
+                 (lod << kClumpLodShift);
+    outClump = uvec4(floatBitsToUint(albedo.rgb), facts);
 }

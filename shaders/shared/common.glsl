@@ -21,6 +21,15 @@ const vec3 kLodViewColors[6] = vec3[6](vec3(0.9, 0.15, 0.1), vec3(0.95, 0.75, 0.
 // light/sh.h's basis: polar axis +y, azimuth from +z towards +x): the clamped cosine's zonal
 // coefficients pi, 2 pi / 3, pi / 4 times the basis at n (Ramamoorthi and Hanrahan 2001).
 // `sky(i)` must be a macro or function returning coefficient i's RGB.
+// instance.vert to instance.frag, the flat word of a clump draw's facts (the w of its flat uvec4,
+// whose xyz carry the constant albedo's float bits): lavapipe sets up every varying slot of every
+// triangle on its one front-end thread, so the facts share one slot.
+const uint kClumpDitherLevelMask = 31u;       // bits 0-4: the crossfade's dither level (lod_select.h)
+const uint kClumpFadeLodBit = 1u << 5u;       // this draw is the instance's fadeLod
+const uint kClumpFadingBit = 1u << 6u;        // the instance is crossfading (its fade above 0)
+const uint kClumpConstantAlbedoBit = 1u << 7u; // xyz's albedo instead of the atlas
+const uint kClumpLodShift = 8u;               // bits 8-10: the LOD the debug view shows
+
 #define MEADOW_SH_IRRADIANCE(result, sky, n)                                                         \
     {                                                                                                \
         vec3 nn = (n);                                                                               \

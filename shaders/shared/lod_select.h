@@ -125,20 +125,40 @@ MEADOW_LOD_FN GpuLodChoice lodSelect(GpuLodParams p, float r, float u, float pre
     return c;
 }
 
-// A 4 x 4 ordered-dither threshold in (0, 1) for a pixel (Bayer 1973). A crossfading instance
-// draws `lod` where threshold >= fade and `fadeLod` where threshold < fade: the two masks are
-// complementary, so every pixel is covered by exactly one of them.
-MEADOW_LOD_FN float lodDitherThreshold(uint px, uint py) {
+// A 4 x 4 ordered dither (Bayer 1973): a pixel's index, 16 distinct values 0..15 over each 4 x 4
+// block, and its threshold (index + 1/2) / 16 in (0, 1). A crossfading instance draws `lod` where
+// threshold >= fade and `fadeLod` where threshold < fade: the two masks are complementary, so every
+// pixel is covered by exactly one of them.
+MEADOW_LOD_FN uint lodDitherIndex(uint px, uint py) {
     uint x = px & 3u, y = py & 3u;
     uint xy = x ^ y;
-    // Bit-interleaved Bayer index: 16 distinct values 0..15.
-    uint bayer = ((xy & 1u) << 3u) | ((x & 1u) << 2u) | ((xy & 2u) << 0u) | ((x & 2u) >> 1u);
-    return (float(bayer) + 0.5f) / 16.0f;
+    // Bit-interleaved Bayer index.
+    return ((xy & 1u) << 3u) | ((x & 1u) << 2u) | ((xy & 2u) << 0u) | ((x & 2u) >> 1u);
+}
+
+MEADOW_LOD_FN float lodDitherThreshold(uint px, uint py) {
+    return (float(lodDitherIndex(px, py)) + 0.5f) / 16.0f;
 }
 
 MEADOW_LOD_FN bool lodDitherKeeps(bool isFadeLod, float fade, uint px, uint py) {
     float t = lodDitherThreshold(px, py);
     return isFadeLod ? t < fade : t >= fade;
+}
+
+// The same test with the fade as a whole level, 0 to 16: how many of the 16 thresholds lie below
+// it. lodDitherKeepsLevel(isFadeLod, lodDitherLevel(fade), px, py) equals lodDitherKeeps(isFadeLod,
+// fade, px, py) for every fade, so the vertex stage can pass the level in a few bits of a flat
+// integer (instance.vert: lavapipe sets up every varying slot of every triangle on one thread).
+MEADOW_LOD_FN uint lodDitherLevel(float fade) {
+    uint level = 0u;
+    for (uint i = 0u; i < 16u; ++i)
+        level += (float(i) + 0.5f) / 16.0f < fade ? 1u : 0u;
+    return level;
+}
+
+MEADOW_LOD_FN bool lodDitherKeepsLevel(bool isFadeLod, uint level, uint px, uint py) {
+    uint i = lodDitherIndex(px, py);
+    return isFadeLod ? i < level : i >= level;
 }
 
 #ifdef __cplusplus

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
+#include <vector>
 
 using namespace meadow::gpu;
 
@@ -116,4 +118,28 @@ TEST(LodSelect, DitherMasksAreComplementary) {
         // The share of pixels drawn in the second LOD follows the fade, to one step of 1/16.
         EXPECT_NEAR(fadeLodPixels / 64.0f, fade, 1.0f / 16.0f + 1e-6f);
     }
+}
+
+// The dither as a whole level (what instance.vert passes to the fragment stage) keeps exactly the
+// pixels the fade keeps, at every threshold and a float step either side of it.
+TEST(LodSelect, DitherLevelKeepsWhatTheFadeKeeps) {
+    std::vector<float> fades = {0.0f, 1e-8f, 0.5f, 0.999f, 1.0f};
+    for (int i = 0; i < 16; ++i) {
+        const float t = (float(i) + 0.5f) / 16.0f;
+        fades.insert(fades.end(), {t, std::nextafter(t, 0.0f), std::nextafter(t, 1.0f)});
+    }
+    for (int i = 0; i <= 1000; ++i)
+        fades.push_back(float(i) / 1000.0f);
+    for (const float fade : fades) {
+        const uint level = lodDitherLevel(fade);
+        EXPECT_LE(level, 16u);
+        for (uint y = 0; y < 4; ++y)
+            for (uint x = 0; x < 4; ++x)
+                for (bool isFadeLod : {false, true})
+                    EXPECT_EQ(lodDitherKeepsLevel(isFadeLod, level, x + 4, y),
+                              lodDitherKeeps(isFadeLod, fade, x + 4, y))
+                        << "fade " << fade << " pixel " << x << "," << y;
+    }
+    EXPECT_EQ(lodDitherLevel(0.0f), 0u);
+    EXPECT_EQ(lodDitherLevel(1.0f), 16u);
 }
