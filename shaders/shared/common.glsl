@@ -17,10 +17,6 @@ const float kPi = 3.14159265358979;
 const vec3 kLodViewColors[6] = vec3[6](vec3(0.9, 0.15, 0.1), vec3(0.95, 0.75, 0.1), vec3(0.2, 0.8, 0.2),
                                        vec3(0.1, 0.6, 0.95), vec3(0.7, 0.3, 0.9), vec3(0.05, 0.9, 0.85));
 
-// Unshadowed irradiance on a surface of unit normal n from RGB sky SH of order 3 (sh[3 i + c],
-// light/sh.h's basis: polar axis +y, azimuth from +z towards +x): the clamped cosine's zonal
-// coefficients pi, 2 pi / 3, pi / 4 times the basis at n (Ramamoorthi and Hanrahan 2001).
-// `sky(i)` must be a macro or function returning coefficient i's RGB.
 // instance.vert to instance.frag, the flat word of a clump draw's facts (the w of its flat uvec4,
 // whose xyz carry the constant albedo's float bits): lavapipe sets up every varying slot of every
 // triangle on its one front-end thread, so the facts share one slot.
@@ -30,6 +26,10 @@ const uint kClumpFadingBit = 1u << 6u;        // the instance is crossfading (it
 const uint kClumpConstantAlbedoBit = 1u << 7u; // xyz's albedo instead of the atlas
 const uint kClumpLodShift = 8u;               // bits 8-10: the LOD the debug view shows
 
+// Unshadowed irradiance on a surface of unit normal n from RGB sky SH of order 3 (sh[3 i + c],
+// light/sh.h's basis: polar axis +y, azimuth from +z towards +x): the clamped cosine's zonal
+// coefficients pi, 2 pi / 3, pi / 4 times the basis at n (Ramamoorthi and Hanrahan 2001).
+// `sky(i)` must be a macro or function returning coefficient i's RGB.
 #define MEADOW_SH_IRRADIANCE(result, sky, n)                                                         \
     {                                                                                                \
         vec3 nn = (n);                                                                               \
