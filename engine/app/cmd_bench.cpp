@@ -9,9 +9,27 @@
 
 #include <cstdio>
 #include <fstream>
+#include <string_view>
 
 namespace meadow {
 namespace {
+
+// Writes `bytes` to `path` whole or not at all (a temporary file beside it, renamed into place).
+void writeWhole(const std::filesystem::path& path, std::string_view bytes) {
+    std::filesystem::path tmp = path;
+    tmp += ".partial";
+    {
+        std::ofstream file(tmp, std::ios::binary);
+        file.write(bytes.data(), std::streamsize(bytes.size()));
+        if (!file) {
+            file.close();
+            std::error_code ec;
+            std::filesystem::remove(tmp, ec);
+            throw Error("cannot write " + path.string());
+        }
+    }
+    std::filesystem::rename(tmp, path);
+}
 
 const char* kBenchOptions = R"(
 Renders frames offscreen and writes timings as JSON to OUT: frame times, CPU time per frame,
@@ -27,6 +45,9 @@ options:
   --driver gpu|cpu      gpu (default): the compute passes animate, cull and pick LODs; cpu: the
                         CPU does (render/cpu_driver.h) and uploads the results every frame, and
                         the GPU-driven path runs after it for the ratio ("comparison")
+  --frame-rgba FILE     also writes the last measured frame as raw pixels: WxH of 8-bit sRGB
+                        RGBA, rows top to bottom, no header (the runner links no image library;
+                        a picture to check on a machine that has only the bundle)
 )";
 
 } // namespace
@@ -37,7 +58,10 @@ int runBenchWith(const Args& argv, const BenchLibrarySource& source) {
     if (printHelpIfAsked(argv, help.c_str()))
         return 0;
     CommandSpec spec{
-        "bench", {"SCENE"}, {"--json", "--clumps", "--frames", "--size", "--driver", "--camera", "--camera-path"}, {}};
+        "bench",
+        {"SCENE"},
+        {"--json", "--clumps", "--frames", "--size", "--driver", "--camera", "--camera-path", "--frame-rgba"},
+        {}};
     addSceneOptions(spec);
     addEngineOptions(spec);
     addFieldOptions(spec);
@@ -49,6 +73,11 @@ int runBenchWith(const Args& argv, const BenchLibrarySource& source) {
         throw Error("meadow bench: --json OUT is required");
     std::filesystem::path out = *args.value("--json");
     checkOutputWritable(out);
+    std::optional<std::filesystem::path> frameOut;
+    if (args.has("--frame-rgba")) {
+        frameOut = *args.value("--frame-rgba");
+        checkOutputWritable(*frameOut);
+    }
     const std::string driver = args.value("--driver").value_or("gpu");
     if (driver != "gpu" && driver != "cpu")
         throw Error("meadow bench: --driver '" + driver + "' is not gpu or cpu");
@@ -57,6 +86,9 @@ int runBenchWith(const Args& argv, const BenchLibrarySource& source) {
     options.frames = args.u32("--frames", 120, 1, 1000000);
     std::tie(options.width, options.height) = args.size("--size", {1280, 720});
     options.path = cameraPathFromArgs(args);
+    std::vector<uint8_t> frame;
+    if (frameOut)
+        options.lastFrameRgba = &frame;
     std::optional<uint32_t> clumpCount;
     if (args.has("--clumps"))
         clumpCount = args.u32("--clumps", 0, 1, 50'000'000);
@@ -82,19 +114,9 @@ int runBenchWith(const Args& argv, const BenchLibrarySource& source) {
     const int status = validationExitStatus(ctx);
     destroyContext(ctx);
 
-    // Written whole or not at all.
-    std::filesystem::path tmp = out;
-    tmp += ".partial";
-    {
-        std::ofstream file(tmp);
-        file << j.dump(2) << "\n";
-        if (!file) {
-            std::error_code ec;
-            std::filesystem::remove(tmp, ec);
-            throw Error("cannot write " + out.string());
-        }
-    }
-    std::filesystem::rename(tmp, out);
+    if (frameOut)
+        writeWhole(*frameOut, std::string_view(reinterpret_cast<const char*>(frame.data()), frame.size()));
+    writeWhole(out, j.dump(2) + "\n");
     std::printf("%s\n", j.dump(2).c_str());
     return status;
 }

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "render/cpu_driver.h"
 #include "render/offscreen.h"
+#include "render/render_targets.h"
 
 #include <algorithm>
 #include <cmath>
@@ -98,6 +99,8 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     j["farRadius"] = renderer.farField ? renderer.lodParams.farRadius : 0.0f;
     j["instancesFar"] = stats.farInstances;
     j["splatsPerFrame"] = stats.farSamples;
+    if (options.lastFrameRgba && cpuDriven == options.cpuDriven)
+        *options.lastFrameRgba = readLdrPixels(ctx, offscreen.targets);
     destroyOffscreen(ctx, offscreen);
     destroyFieldRenderer(ctx, renderer);
     return j;

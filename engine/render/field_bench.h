@@ -21,6 +21,9 @@ struct FieldBenchOptions {
     Camera camera;                  // the lens, and the view when there is no path
     float timeOfDay = 12.0f;        // at the first frame; the sky then moves a minute per second
     std::optional<CameraPath> path; // measured frame i sees it at i/30 s
+    // When set, receives the last measured frame of the path asked for (cpuDriven's), tonemapped:
+    // width x height pixels of 8-bit sRGB RGBA, rows top to bottom.
+    std::vector<uint8_t>* lastFrameRgba = nullptr;
 };
 
 inline constexpr uint32_t kFieldBenchWarmUp = 5;
