@@ -1,7 +1,7 @@
 #version 460
 // Far field, splat pass: far instances drawn as surface samples (issue 18; far_splat.h). Each
 // workgroup takes kFarInstancesPerGroup entries of the cull pass's far list at a time (indirect
-// dispatch, then every gl_NumWorkGroups-th set), kFarGroupSize / kFarInstancesPerGroup threads
+// dispatch, then every gl_NumWorkGroups-th set), gl_WorkGroupSize.x / kFarInstancesPerGroup threads
 // striding over the first `count` of each one's clump's shuffled samples. Each sample moves with the last-LOD vertex it follows (x̄ + U q at that LOD's
 // modes, blended across graph jumps, as instance.vert) and takes the light of its triangle's
 // nearest vertex to first order in that displacement, projects to a square of `side` pixels, and is kept where it is
@@ -16,7 +16,8 @@
 #include "draw_instance.h"
 #include "far_splat.h"
 
-layout(local_size_x = kFarGroupSize) in;
+// The width is the device's (gpu_types.h): specialization constant 0.
+layout(local_size_x = kFarGroupSize, local_size_x_id = 0) in;
 
 MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer FarList { uvec2 farList[]; };
@@ -44,7 +45,7 @@ vec3 unpackOctahedralNormal(uint packed) {
 void main() {
     uint total = farDispatch.count;
     ivec2 size = ivec2(frame.lodScreen.zw);
-    const uint lanes = kFarGroupSize / kFarInstancesPerGroup;
+    const uint lanes = gl_WorkGroupSize.x / kFarInstancesPerGroup;
     uint lane = gl_LocalInvocationID.x % lanes, set = gl_LocalInvocationID.x / lanes;
     for (uint item = gl_WorkGroupID.x * kFarInstancesPerGroup + set; item < total;
          item += gl_NumWorkGroups.x * kFarInstancesPerGroup) {
@@ -66,11 +67,11 @@ void main() {
         float areaPerSample = area / float(count);
         // The eye's elevation above the base and, in clump space (yaw undone, then the mirror), its
         // azimuth: for the coverage gain and the samples' visibility bits (far_splat.h).
-        vec3 toBase = frame.cameraPosition.xyz - inst.positionScale.xyz;
-        float elevation = farEyeElevation(toBase.x, toBase.y, toBase.z);
+        vec3 toEye = frame.cameraPosition.xyz - inst.positionScale.xyz;
+        float elevation = farEyeElevation(toEye.x, toEye.y, toEye.z);
         float baseW = max((frame.viewProj * vec4(inst.positionScale.xyz, 1.0)).w, 1e-3);
-        float gain = farCoverageGain(clump, sqrt(area) * frame.lodScreen.x / baseW, elevation);
-        vec3 eye = toBase * yaw;
+        float gain = farCoverageGain(clump, farInstanceSize(area, frame.lodScreen.x, baseW), elevation);
+        vec3 eye = toEye * yaw;
         if (mirrored)
             eye -= 2.0 * dot(eye, m) * m;
         float azimuth = farEyeAzimuth(eye.x, eye.z);

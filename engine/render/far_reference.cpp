@@ -67,11 +67,11 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
         const float area = clumpArea * scale * scale;
         const float areaPerSample = area / float(count);
         const glm::vec3 base(inst.positionScale);
-        const glm::vec3 toBase = glm::vec3(frame.cameraPosition) - base;
-        const float elevation = gpu::farEyeElevation(toBase.x, toBase.y, toBase.z);
+        const glm::vec3 toEye = glm::vec3(frame.cameraPosition) - base;
+        const float elevation = gpu::farEyeElevation(toEye.x, toEye.y, toEye.z);
         const float baseW = std::max((frame.viewProj * glm::vec4(base, 1.0f)).w, 1e-3f);
-        const float gain = gpu::farCoverageGain(clump, std::sqrt(area) * frame.lodScreen.x / baseW, elevation);
-        glm::vec3 eye = toBase * yaw;
+        const float gain = gpu::farCoverageGain(clump, gpu::farInstanceSize(area, frame.lodScreen.x, baseW), elevation);
+        glm::vec3 eye = toEye * yaw;
         if (mirrored)
             eye -= 2.0f * glm::dot(eye, m) * m;
         const float azimuth = gpu::farEyeAzimuth(eye.x, eye.z);

@@ -59,6 +59,14 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
                        const FieldScenery& scenery);
 } // namespace
 
+uint32_t farSplatLanesFor(const VkPhysicalDeviceProperties& device) {
+    // On an H200, 32 lanes (a warp per instance) against 2: the splat pass 3.93 -> 0.35 ms in the
+    // default view at 1920x1080, 2.05 -> 0.41 ms at a million clumps (docs/BENCHMARKS.md).
+    if (device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+        return gpu::kFarGroupSize / gpu::kFarInstancesPerGroup;
+    return gpu::kFarMaxLanes;
+}
+
 FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clumps,
                                   std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
                                   const FieldScenery& scenery) {
@@ -80,6 +88,9 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
         throw Error("the field has " + std::to_string(clumps.size()) + " clumps; the renderer draws at most 65535");
     for (size_t c = 0; c < clumps.size(); ++c)
         checkFieldClump(clumps[c], c, scenery.lodCount);
+    if (scenery.farLanes > gpu::kFarMaxLanes || (scenery.farLanes & (scenery.farLanes - 1)) != 0)
+        throw Error("the far field's " + std::to_string(scenery.farLanes) +
+                    " threads per instance are not a power of two up to " + std::to_string(gpu::kFarMaxLanes));
     if (scenery.lod.farRadius > 0.0f) {
         if (scenery.lodCount != gpu::kLodSelectCount)
             throw Error("the far field follows LOD 4: it needs all five levels of detail");
@@ -127,7 +138,9 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     groundMapDesc.pushConstantSize = sizeof(glm::vec4);
     groundMapDesc.multiplyBlend = true;
     r.groundMap = createGraphicsPipeline(ctx, groundMapDesc);
-    r.farSplat = createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4));
+    r.farLanes = scenery.farLanes > 0 ? scenery.farLanes : farSplatLanesFor(ctx.properties);
+    r.farSplat =
+        createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4), gpu::kFarInstancesPerGroup * r.farLanes);
     r.farResolve = createComputePipeline(ctx, "far_resolve.comp");
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);

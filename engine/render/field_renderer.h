@@ -88,6 +88,9 @@ struct FieldScenery {
     float farDensity = gpu::kFarDefaultDensity; // far-field samples per pixel of projected surface (far_splat.h)
     // The far field's clumps drawn as LOD 0 meshes instead of splats (its reference: --far-lod0).
     bool farAsLod0 = false;
+    // Threads per far instance in the splat pass (gpu_types.h): a power of two up to
+    // gpu::kFarMaxLanes; 0: the device's (farSplatLanesFor). The picture is the same with any.
+    uint32_t farLanes = 0;
     sky::SkyDay sky; // SH order 3; at least one frame
 };
 
@@ -171,6 +174,7 @@ struct FieldRenderer {
     float farDensity = gpu::kFarDefaultDensity;
     bool farAsLod0 = false;
     bool farField = false;               // lodParams.farRadius > 0: the splat and resolve passes run
+    uint32_t farLanes = 0;               // the splat pass's threads per far instance
     std::vector<uint32_t> meshTriangles; // per draw bucket
     std::vector<uint32_t> drawCapacity;  // per draw bucket: the instances its visible range holds
     uint64_t lodVertexCount = 0;
@@ -203,6 +207,10 @@ struct FieldStats {
     uint64_t trianglesDrawn = 0;          // instances + terrain + sky
     std::vector<uint32_t> visiblePerMesh; // per draw bucket; a crossfading instance counts in two
 };
+
+// The splat pass's threads per far instance on a device (FieldScenery::farLanes = 0): 2 on a CPU
+// (lavapipe's SIMD halves), gpu::kFarMaxLanes on a GPU (measured in docs/BENCHMARKS.md).
+uint32_t farSplatLanesFor(const VkPhysicalDeviceProperties& device);
 
 // Every instance's `mesh` names a clump; its boundingRadius must hold every LOD of it as it moves.
 // Throws meadow::Error on inconsistent content (naming what).

@@ -95,7 +95,8 @@ void createLayouts(Context& ctx, Pipeline& p, const std::vector<const LoadedShad
 
 } // namespace
 
-Pipeline createComputePipeline(Context& ctx, std::string_view shaderName, uint32_t pushConstantSize) {
+Pipeline createComputePipeline(Context& ctx, std::string_view shaderName, uint32_t pushConstantSize,
+                               uint32_t localSizeX) {
     Pipeline p;
     p.name = std::string(shaderName);
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
@@ -104,6 +105,15 @@ Pipeline createComputePipeline(Context& ctx, std::string_view shaderName, uint32
         throw Error("shader " + p.name + " is not a compute shader");
     for (int i = 0; i < 3; ++i)
         p.localSize[i] = shader.reflection.localSize[i];
+    if (localSizeX > 0) {
+        if (!shader.reflection.localSizeXSpecialized)
+            throw Error("shader " + p.name + " does not take its workgroup width from specialization constant 0");
+        if (localSizeX > ctx.properties.limits.maxComputeWorkGroupSize[0] ||
+            localSizeX * p.localSize[1] * p.localSize[2] > ctx.properties.limits.maxComputeWorkGroupInvocations)
+            throw Error("shader " + p.name + ": a workgroup " + std::to_string(localSizeX) +
+                        " wide is beyond the device's limits");
+        p.localSize[0] = localSizeX;
+    }
     createLayouts(ctx, p, {&shader}, pushConstantSize);
 
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -112,6 +122,10 @@ Pipeline createComputePipeline(Context& ctx, std::string_view shaderName, uint32
     info.stage.module = shader.module;
     info.stage.pName = "main";
     info.layout = p.layout;
+    const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
+    const VkSpecializationInfo specialization{1, &entry, sizeof(uint32_t), &localSizeX};
+    if (localSizeX > 0)
+        info.stage.pSpecializationInfo = &specialization;
     VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline));
     return p;
 }

@@ -28,8 +28,11 @@ struct Pipeline {
 };
 
 // `pushConstantSize` must be the size of the shader's push-constant block as its SPIR-V lays it out
-// (0 when it declares none); anything else throws, naming both.
-Pipeline createComputePipeline(Context& context, std::string_view shader, uint32_t pushConstantSize = 0);
+// (0 when it declares none); anything else throws, naming both. `localSizeX` > 0 sets the
+// workgroup's width through specialization constant 0, for a shader that declares it
+// (`layout(local_size_x = DEFAULT, local_size_x_id = 0) in;`); a shader that does not, throws.
+Pipeline createComputePipeline(Context& context, std::string_view shader, uint32_t pushConstantSize = 0,
+                               uint32_t localSizeX = 0);
 
 struct GraphicsPipelineDesc {
     std::string_view vertexShader;

@@ -25,6 +25,8 @@ enum : uint32_t {
     kOpTypeStruct = 30,
     kOpTypePointer = 32,
     kOpConstant = 43,
+    kOpSpecConstant = 50,
+    kOpSpecConstantComposite = 51,
     kOpVariable = 59,
     kOpDecorate = 71,
     kOpMemberDecorate = 72,
@@ -37,6 +39,9 @@ enum : uint32_t {
     kDecorationBinding = 33,
     kDecorationDescriptorSet = 34,
     kDecorationOffset = 35,
+    kDecorationSpecId = 1,
+    kDecorationBuiltIn = 11,
+    kBuiltInWorkgroupSize = 25,
 
     kStorageUniformConstant = 0,
     kStorageUniform = 2,
@@ -58,9 +63,12 @@ struct Id {
     uint32_t set = ~0u;
     uint32_t binding = ~0u;
     uint32_t constant = 0;
-    uint32_t sampled = 0; // OpTypeImage: 1 sampled, 2 storage
-    uint32_t width = 0;   // OpTypeInt, OpTypeFloat: bits
-    uint32_t count = 0;   // OpTypeVector: components; OpTypeMatrix: columns; OpTypeArray: the length's id
+    uint32_t specId = ~0u;         // OpSpecConstant: its SpecId decoration
+    bool workgroupSize = false;    // decorated BuiltIn WorkgroupSize
+    uint32_t firstConstituent = 0; // OpSpecConstantComposite
+    uint32_t sampled = 0;          // OpTypeImage: 1 sampled, 2 storage
+    uint32_t width = 0;            // OpTypeInt, OpTypeFloat: bits
+    uint32_t count = 0;            // OpTypeVector: components; OpTypeMatrix: columns; OpTypeArray: the length's id
     uint32_t arrayStride = 0;
     bool block = false;
     bool bufferBlock = false;
@@ -150,6 +158,10 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
                 id(1).set = w[3];
             if (w[2] == kDecorationArrayStride && words >= 4)
                 id(1).arrayStride = w[3];
+            if (w[2] == kDecorationSpecId && words >= 4)
+                id(1).specId = w[3];
+            if (w[2] == kDecorationBuiltIn && words >= 4 && w[3] == kBuiltInWorkgroupSize)
+                id(1).workgroupSize = true;
             break;
         case kOpMemberDecorate:
             if (words >= 5 && (w[3] == kDecorationOffset || w[3] == kDecorationMatrixStride)) {
@@ -202,6 +214,14 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
             id(2).opcode = opcode;
             id(2).constant = words >= 4 ? w[3] : 0;
             break;
+        case kOpSpecConstant:
+            id(2).opcode = opcode;
+            id(2).constant = words >= 4 ? w[3] : 0;
+            break;
+        case kOpSpecConstantComposite:
+            id(2).opcode = opcode;
+            id(2).firstConstituent = words >= 4 ? w[3] : 0;
+            break;
         case kOpVariable:
             id(2).opcode = opcode;
             id(2).typeId = w[1];
@@ -214,6 +234,15 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
     if (haveLocalSizeIds)
         for (int i = 0; i < 3; ++i)
             out.localSize[i] = localSizeIds[i] < bound ? ids[localSizeIds[i]].constant : 0;
+
+    // local_size_x_id = 0: the x of LocalSizeId (SPIR-V 1.6), or of the WorkgroupSize built-in
+    // (before), is the specialization constant with SpecId 0.
+    auto specIdZero = [&](uint32_t i) { return i < bound && ids[i].opcode == kOpSpecConstant && ids[i].specId == 0; };
+    if (haveLocalSizeIds && specIdZero(localSizeIds[0]))
+        out.localSizeXSpecialized = true;
+    for (const Id& c : ids)
+        if (c.workgroupSize && c.opcode == kOpSpecConstantComposite && specIdZero(c.firstConstituent))
+            out.localSizeXSpecialized = true;
 
     for (uint32_t i = 0; i < bound; ++i) {
         const Id& var = ids[i];

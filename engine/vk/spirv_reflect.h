@@ -13,7 +13,8 @@ namespace meadow {
 
 struct ShaderReflection {
     VkShaderStageFlagBits stage = VK_SHADER_STAGE_ALL;
-    uint32_t localSize[3] = {0, 0, 0};             // compute only
+    uint32_t localSize[3] = {0, 0, 0};             // compute only: the default where specialized
+    bool localSizeXSpecialized = false;            // x is specialization constant 0 (local_size_x_id = 0)
     std::map<uint32_t, VkDescriptorType> bindings; // binding index -> type
     uint32_t pushConstantBytes = 0; // the push-constant block's size (last member's offset + size); 0: none
 };

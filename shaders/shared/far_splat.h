@@ -263,6 +263,12 @@ MEADOW_FAR_FN uint farVisibilityBitAt(float azimuth, float elevation, float r1, 
     return farVisibilityBit(a, e);
 }
 
+// An instance's size for its coverage gain: the square root of its surface (`area`, m²) in pixels
+// at its base's depth (`baseW`, clip w), `pixelsPerUnit` pixels per unit of length at unit depth.
+MEADOW_FAR_FN float farInstanceSize(float area, float pixelsPerUnit, float baseW) {
+    return farSqrt(area) * pixelsPerUnit / baseW;
+}
+
 // An instance's coverage gain: its clump's table (GpuClump::farGain) at its size (`size`, the
 // square root of its surface in pixels at its base's depth) and the eye's elevation above it
 // (farEyeElevation), bilinear; the sizes clamp to the table's ends.

@@ -24,11 +24,14 @@ MEADOW_CONST kAnimateGroupSize = 64;
 MEADOW_CONST kLightGroupSize = 64;
 MEADOW_CONST kTonemapGroupSize = 8;
 // The far field (far_splat.h): a splat workgroup takes kFarInstancesPerGroup far instances at once,
-// kFarGroupSize / kFarInstancesPerGroup threads striding over each one's samples (most far
-// instances have a few dozen: a whole group on one would leave most threads idle); one workgroup
-// per kFarInstancesPerGroup listed instances, at most kFarMaxGroups, each then taking every
-// kFarMaxGroups-th set; the resolve pass one thread per pixel.
+// its width / kFarInstancesPerGroup threads ("lanes") striding over each one's samples; one
+// workgroup per kFarInstancesPerGroup listed instances, at most kFarMaxGroups, each then taking
+// every kFarMaxGroups-th set; the resolve pass one thread per pixel. The width is specialized per
+// device (FieldScenery::farLanes): kFarGroupSize, 2 lanes, on a CPU, where most far instances' few
+// dozen samples keep both SIMD halves busy; up to kFarMaxLanes on a GPU, which needs far more
+// threads in flight than there are far instances. The picture is the same at any width.
 MEADOW_CONST kFarGroupSize = 64;
+MEADOW_CONST kFarMaxLanes = 32;
 MEADOW_CONST kFarInstancesPerGroup = 32;
 MEADOW_CONST kFarMaxGroups = 65535;
 MEADOW_CONST kFarResolveGroupSize = 8;

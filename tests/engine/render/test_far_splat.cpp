@@ -198,6 +198,14 @@ TEST(FarSplat, VisibilityViewFollowsTheEyesDirection) {
 
 // The coverage gain's table (far_splat.h): exact at its bins, linear between them in log2 of the
 // size and in the elevation's 30-degree units, clamped at both ends.
+// The size the gain table is looked up at: the square root of the surface, in pixels at the base's
+// depth (4 m² is 2 m across; at 100 px per unit at unit depth and depth 10, 20 px).
+TEST(FarSplat, InstanceSizeIsItsSurfacesSideInPixels) {
+    EXPECT_FLOAT_EQ(farInstanceSize(4.0f, 100.0f, 10.0f), 20.0f);
+    EXPECT_FLOAT_EQ(farInstanceSize(4.0f, 100.0f, 20.0f), 10.0f);
+    EXPECT_FLOAT_EQ(farInstanceSize(16.0f, 100.0f, 20.0f), 20.0f);
+}
+
 TEST(FarSplat, CoverageGainInterpolatesItsTable) {
     GpuClump clump{};
     for (uint size = 0; size < kFarGainSizes; ++size)

@@ -207,6 +207,29 @@ TEST_F(Gpu, CpuDrivenPathDrawsTheSameFarField) {
     EXPECT_LE(differingChannels(gpuPath.picture, cpuPath.picture), gpuPath.picture.size() / 1000);
 }
 
+// The splat pass's threads per far instance (gpu_types.h: 2 on a CPU, more on a GPU) only share
+// the samples out differently: the nearest sample of each pixel wins whatever the order, so every
+// width draws the same picture, byte for byte, on both driving paths. Widths outside the powers
+// of two up to kFarMaxLanes are refused.
+TEST_F(Gpu, TheSplatPassDrawsTheSamePictureWithAnyThreadsPerInstance) {
+    ComparisonField field = comparisonField(6.0f);
+    field.scenery.farLanes = 2;
+    const PathRun two = drawOnPath(*context, field, false, 3);
+    EXPECT_GT(two.stats.farInstances, 200u);
+    for (uint32_t lanes : {1u, 8u, gpu::kFarMaxLanes}) {
+        field.scenery.farLanes = lanes;
+        for (bool cpuDriven : {false, true}) {
+            const PathRun other = drawOnPath(*context, field, cpuDriven, 3);
+            EXPECT_EQ(other.stats.farSamples, two.stats.farSamples) << lanes << " lanes";
+            EXPECT_TRUE(other.picture == two.picture) << lanes << " lanes, cpuDriven " << cpuDriven;
+        }
+    }
+    for (uint32_t lanes : {3u, 2 * gpu::kFarMaxLanes}) {
+        field.scenery.farLanes = lanes;
+        EXPECT_THROW(drawOnPath(*context, field, false, 1), Error) << lanes << " lanes";
+    }
+}
+
 // A far radius above LOD 4's switch (4 px, band 0.1: the far field's band, 4.5 to 5.5 px, does not
 // lie below LOD 4's, 3.6 to 4.4 px): LOD 3 hands over to the far field, LOD 4 is never drawn, on
 // either driving path, and both draw the same picture.

@@ -25,6 +25,7 @@ TEST(SpirvReflect, CullPassLayout) {
 TEST(SpirvReflect, FarPassesLayout) {
     ShaderReflection splat = reflectShader(findShader("far_splat.comp"), "far_splat.comp");
     EXPECT_EQ(splat.localSize[0], gpu::kFarGroupSize);
+    EXPECT_TRUE(splat.localSizeXSpecialized); // the threads per instance are the device's
     // Frame; far list, dispatch, draw records, clumps, samples, LOD vertices, motion, light; the
     // meshes' depth; the visibility buffer. The mirror plane as a push constant.
     ASSERT_EQ(splat.bindings.size(), 11u);
@@ -34,6 +35,7 @@ TEST(SpirvReflect, FarPassesLayout) {
     ShaderReflection resolve = reflectShader(findShader("far_resolve.comp"), "far_resolve.comp");
     EXPECT_EQ(resolve.localSize[0], gpu::kFarResolveGroupSize);
     EXPECT_EQ(resolve.localSize[1], gpu::kFarResolveGroupSize);
+    EXPECT_FALSE(resolve.localSizeXSpecialized);
     EXPECT_EQ(resolve.bindings.at(2), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
 }
 
