@@ -138,9 +138,8 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     groundMapDesc.pushConstantSize = sizeof(glm::vec4);
     groundMapDesc.multiplyBlend = true;
     r.groundMap = createGraphicsPipeline(ctx, groundMapDesc);
-    r.farLanes = scenery.farLanes > 0 ? scenery.farLanes : farSplatLanesFor(ctx.properties);
-    r.farSplat =
-        createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4), gpu::kFarInstancesPerGroup * r.farLanes);
+    const uint32_t farLanes = scenery.farLanes > 0 ? scenery.farLanes : farSplatLanesFor(ctx.properties);
+    r.farSplat = createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4), gpu::kFarInstancesPerGroup * farLanes);
     r.farResolve = createComputePipeline(ctx, "far_resolve.comp");
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);

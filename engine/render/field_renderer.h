@@ -174,7 +174,6 @@ struct FieldRenderer {
     float farDensity = gpu::kFarDefaultDensity;
     bool farAsLod0 = false;
     bool farField = false;               // lodParams.farRadius > 0: the splat and resolve passes run
-    uint32_t farLanes = 0;               // the splat pass's threads per far instance
     std::vector<uint32_t> meshTriangles; // per draw bucket
     std::vector<uint32_t> drawCapacity;  // per draw bucket: the instances its visible range holds
     uint64_t lodVertexCount = 0;
