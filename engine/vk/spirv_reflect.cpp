@@ -26,7 +26,6 @@ enum : uint32_t {
     kOpTypePointer = 32,
     kOpConstant = 43,
     kOpSpecConstant = 50,
-    kOpSpecConstantComposite = 51,
     kOpVariable = 59,
     kOpDecorate = 71,
     kOpMemberDecorate = 72,
@@ -40,8 +39,6 @@ enum : uint32_t {
     kDecorationDescriptorSet = 34,
     kDecorationOffset = 35,
     kDecorationSpecId = 1,
-    kDecorationBuiltIn = 11,
-    kBuiltInWorkgroupSize = 25,
 
     kStorageUniformConstant = 0,
     kStorageUniform = 2,
@@ -63,12 +60,10 @@ struct Id {
     uint32_t set = ~0u;
     uint32_t binding = ~0u;
     uint32_t constant = 0;
-    uint32_t specId = ~0u;         // OpSpecConstant: its SpecId decoration
-    bool workgroupSize = false;    // decorated BuiltIn WorkgroupSize
-    uint32_t firstConstituent = 0; // OpSpecConstantComposite
-    uint32_t sampled = 0;          // OpTypeImage: 1 sampled, 2 storage
-    uint32_t width = 0;            // OpTypeInt, OpTypeFloat: bits
-    uint32_t count = 0;            // OpTypeVector: components; OpTypeMatrix: columns; OpTypeArray: the length's id
+    uint32_t specId = ~0u; // OpSpecConstant: its SpecId decoration
+    uint32_t sampled = 0;  // OpTypeImage: 1 sampled, 2 storage
+    uint32_t width = 0;    // OpTypeInt, OpTypeFloat: bits
+    uint32_t count = 0;    // OpTypeVector: components; OpTypeMatrix: columns; OpTypeArray: the length's id
     uint32_t arrayStride = 0;
     bool block = false;
     bool bufferBlock = false;
@@ -160,8 +155,6 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
                 id(1).arrayStride = w[3];
             if (w[2] == kDecorationSpecId && words >= 4)
                 id(1).specId = w[3];
-            if (w[2] == kDecorationBuiltIn && words >= 4 && w[3] == kBuiltInWorkgroupSize)
-                id(1).workgroupSize = true;
             break;
         case kOpMemberDecorate:
             if (words >= 5 && (w[3] == kDecorationOffset || w[3] == kDecorationMatrixStride)) {
@@ -211,16 +204,9 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
             id(1).typeId = w[3];
             break;
         case kOpConstant:
+        case kOpSpecConstant: // its default value
             id(2).opcode = opcode;
             id(2).constant = words >= 4 ? w[3] : 0;
-            break;
-        case kOpSpecConstant:
-            id(2).opcode = opcode;
-            id(2).constant = words >= 4 ? w[3] : 0;
-            break;
-        case kOpSpecConstantComposite:
-            id(2).opcode = opcode;
-            id(2).firstConstituent = words >= 4 ? w[3] : 0;
             break;
         case kOpVariable:
             id(2).opcode = opcode;
@@ -235,14 +221,11 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
         for (int i = 0; i < 3; ++i)
             out.localSize[i] = localSizeIds[i] < bound ? ids[localSizeIds[i]].constant : 0;
 
-    // local_size_x_id = 0: the x of LocalSizeId (SPIR-V 1.6), or of the WorkgroupSize built-in
-    // (before), is the specialization constant with SpecId 0.
-    auto specIdZero = [&](uint32_t i) { return i < bound && ids[i].opcode == kOpSpecConstant && ids[i].specId == 0; };
-    if (haveLocalSizeIds && specIdZero(localSizeIds[0]))
+    // local_size_x_id = 0: LocalSizeId's x (SPIR-V 1.4 and later, what meadow builds) is the
+    // specialization constant with SpecId 0.
+    if (haveLocalSizeIds && localSizeIds[0] < bound && ids[localSizeIds[0]].opcode == kOpSpecConstant &&
+        ids[localSizeIds[0]].specId == 0)
         out.localSizeXSpecialized = true;
-    for (const Id& c : ids)
-        if (c.workgroupSize && c.opcode == kOpSpecConstantComposite && specIdZero(c.firstConstituent))
-            out.localSizeXSpecialized = true;
 
     for (uint32_t i = 0; i < bound; ++i) {
         const Id& var = ids[i];
