@@ -24,10 +24,13 @@ layout(set = 0, binding = 1, std430) readonly buffer FarList { uvec2 farList[]; 
 layout(set = 0, binding = 2, std430) readonly buffer FarDispatch { GpuFarDispatch farDispatch; };
 layout(set = 0, binding = 3, std430) readonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
 layout(set = 0, binding = 4, std430) readonly buffer Clumps { GpuClump clumps[]; };
-layout(set = 0, binding = 5, std430) readonly buffer FarSamples { GpuFarSample farSamples[]; };
-layout(set = 0, binding = 6, std430) readonly buffer LodVertices { GpuLodVertex lodVertices[]; };
-layout(set = 0, binding = 7, std430) readonly buffer MotionData { float motionData[]; };
-layout(set = 0, binding = 8, std430) readonly buffer VertexLight { uvec4 vertexLight[]; };
+// What each sample reads is fetched from texel buffers, the same bytes as the storage buffers the
+// meshes read: llvmpipe loads a storage buffer lane by lane, each component behind its own branch,
+// and a texel buffer with one gather per texel (docs/BENCHMARKS.md).
+layout(set = 0, binding = 5) uniform usamplerBuffer farSamples; // GpuFarSample: 2 texels each
+layout(set = 0, binding = 6) uniform usamplerBuffer lodVertices; // GpuLodVertex: 3 texels each
+layout(set = 0, binding = 7) uniform samplerBuffer motionData;
+layout(set = 0, binding = 8) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 9) uniform sampler2D meshDepth;
 layout(set = 0, binding = 10, std430) buffer Visibility { uint64_t visibility[]; };
 // As instance.vert: the mirror plane's normal (xz).
@@ -77,21 +80,26 @@ void main() {
         float azimuth = farEyeAzimuth(eye.x, eye.z);
         uint instance = entry & kLodEntryIndexMask;
         for (uint k = lane; k < count; k += lanes) {
-            GpuFarSample farSample = farSamples[clump.far.x + k];
+            GpuFarSample farSample;
+            farSample.position = texelFetch(farSamples, int(2u * (clump.far.x + k)));
             uint bit = farVisibilityBitAt(azimuth, elevation, farSampleRandom(instance, k + kFarAzimuthStream),
                                           farSampleRandom(instance, k + kFarElevationStream));
             if ((farSample.position.w >> bit & 1u) == 0u)
                 continue; // its own clump hides it from here
-            GpuLodVertex v = lodVertices[farSample.data.w];
+            farSample.data = texelFetch(farSamples, int(2u * (clump.far.x + k) + 1u));
+            GpuLodVertex v;
+            v.motion = texelFetch(lodVertices, int(3u * farSample.data.w + 2u));
             uint rank = v.motion.w & 0xffffu;
             uint q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
             vec3 d = vec3(0.0);
             for (uint r = 0u; r < rank; ++r) {
                 uint row = v.motion.x + 3u * r;
-                float q = motionData[q0 + r];
+                float q = texelFetch(motionData, int(q0 + r)).r;
                 if (blending)
-                    q = mix(q, motionData[q1 + r], inst.pose.z);
-                d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * q;
+                    q = mix(q, texelFetch(motionData, int(q1 + r)).r, inst.pose.z);
+                d += vec3(texelFetch(motionData, int(row)).r, texelFetch(motionData, int(row + 1u)).r,
+                          texelFetch(motionData, int(row + 2u)).r) *
+                     q;
             }
             vec3 p = uintBitsToFloat(farSample.position.xyz) + d, n = unpackOctahedralNormal(farSample.data.x);
             if (mirrored) {
@@ -123,19 +131,17 @@ void main() {
             // The side of the sheet the camera sees, lit as instance.vert lights its vertex.
             bool front = cosine >= 0.0;
             uint base = inst.offsets.z + farSample.data.z * (inst.offsets.w & 0xffffu);
-            uvec4 w0 = vertexLight[base], w1 = vertexLight[base + 1u], w2 = vertexLight[base + 2u];
-            vec3 irradiance;
-            if (front) {
-                vec4 l0 = vec4(unpackHalf2x16(w0.x), unpackHalf2x16(w0.y));
-                vec4 l1 = vec4(unpackHalf2x16(w0.z), unpackHalf2x16(w0.w));
-                vec4 l2 = vec4(unpackHalf2x16(w1.x), unpackHalf2x16(w1.y));
-                irradiance = vec3(l0.x + dot(l0.yzw, d), l1.x + dot(l1.yzw, d), l2.x + dot(l2.yzw, d));
-            } else {
-                vec4 l3 = vec4(unpackHalf2x16(w1.z), unpackHalf2x16(w1.w));
-                vec4 l4 = vec4(unpackHalf2x16(w2.x), unpackHalf2x16(w2.y));
-                vec4 l5 = vec4(unpackHalf2x16(w2.z), unpackHalf2x16(w2.w));
-                irradiance = vec3(l3.x + dot(l3.yzw, d), l4.x + dot(l4.yzw, d), l5.x + dot(l5.yzw, d));
-            }
+            // (E, gradient) per channel: the front side's in the first 1.5 texels, the back side's in
+            // the last 1.5; the texel not needed is not fetched.
+            uvec4 middle = texelFetch(vertexLight, int(base + 1u));
+            uvec4 outer = texelFetch(vertexLight, int(base + (front ? 0u : 2u)));
+            vec4 r = front ? vec4(unpackHalf2x16(outer.x), unpackHalf2x16(outer.y))
+                           : vec4(unpackHalf2x16(middle.z), unpackHalf2x16(middle.w));
+            vec4 g = front ? vec4(unpackHalf2x16(outer.z), unpackHalf2x16(outer.w))
+                           : vec4(unpackHalf2x16(outer.x), unpackHalf2x16(outer.y));
+            vec4 b = front ? vec4(unpackHalf2x16(middle.x), unpackHalf2x16(middle.y))
+                           : vec4(unpackHalf2x16(outer.z), unpackHalf2x16(outer.w));
+            vec3 irradiance = vec3(r.x + dot(r.yzw, d), g.x + dot(g.yzw, d), b.x + dot(b.yzw, d));
             vec3 albedo = unpackRgb9e5(farSample.data.y);
             vec3 radiance = albedo * max(irradiance, 0.0) / kPi;
             if (frame.motion.z == kDebugViewLod)

@@ -181,6 +181,7 @@ void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size
 void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::span<const gpu::GpuInstance> instances,
                    const std::vector<float>& skyData, const RgbaImage& atlas, const FieldScenery& scenery) {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    const VkBufferUsageFlags texels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT; // also read by the splat pass
     auto deviceBuffer = [&](Buffer& buffer, const void* data, size_t bytes, VkBufferUsageFlags extra = 0) {
         buffer = createBuffer(ctx, std::max<size_t>(bytes, 16), storage | extra, MemoryUse::Device);
         if (data && bytes > 0)
@@ -197,12 +198,12 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     deviceBuffer(r.drawInstances, nullptr, instances.size() * sizeof(gpu::GpuDrawInstance),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.lodVertices, p.lodVertices.data(), p.lodVertices.size() * sizeof(gpu::GpuLodVertex),
-                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     deviceBuffer(r.motionData, p.motionData.data(), p.motionData.size() * sizeof(float),
-                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     deviceBuffer(r.motionGraph, p.motionGraph.data(), p.motionGraph.size() * sizeof(uint32_t));
     deviceBuffer(r.transfer, p.transfer.data(), p.transfer.size() * sizeof(float));
-    deviceBuffer(r.vertexLight, nullptr, size_t(p.lightVec4s) * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.vertexLight, nullptr, size_t(p.lightVec4s) * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     deviceBuffer(r.skyData, skyData.data(), skyData.size() * sizeof(float));
     r.indices = createBuffer(ctx, p.indices.size() * sizeof(uint32_t),
                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
@@ -217,7 +218,16 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     uploadToBuffer(ctx, r.drawCommandTemplate, p.draws.data(), drawBytes);
     deviceBuffer(r.visibleList, nullptr, size_t(p.visibleCount) * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.farSamples, p.farSamples.data(), p.farSamples.size() * sizeof(gpu::GpuFarSample),
-                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
+    if (r.farField) {
+        r.farSampleTexels =
+            createTexelBufferView(ctx, r.farSamples, VK_FORMAT_R32G32B32A32_UINT, 16, "the far samples");
+        r.lodVertexTexels =
+            createTexelBufferView(ctx, r.lodVertices, VK_FORMAT_R32G32B32A32_UINT, 16, "the LOD vertices");
+        r.motionTexels = createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32_SFLOAT, 4, "the motion data");
+        r.vertexLightTexels =
+            createTexelBufferView(ctx, r.vertexLight, VK_FORMAT_R32G32B32A32_UINT, 16, "the vertex light");
+    }
     // (lodVertices, motionData, farSamples, farList and farDispatch are read back by the splat pass's
     // reference test.)
     deviceBuffer(r.farList, nullptr, instances.size() * 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
@@ -282,6 +292,11 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance, &r.groundMap,
                         &r.farSplat, &r.farResolve})
         destroyPipeline(ctx, *p);
+    for (VkBufferView* view : {&r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.vertexLightTexels})
+        if (*view) {
+            vkDestroyBufferView(ctx.device, *view, nullptr);
+            *view = VK_NULL_HANDLE;
+        }
     for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,        &r.drawInstances,
                       &r.clumps,        &r.lodVertices, &r.indices,       &r.motionData,      &r.motionGraph,
                       &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,    &r.drawCommandTemplate,
@@ -579,8 +594,8 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
     vkCmdFillBuffer(cmd, t.farVisibility.buffer, 0, VK_WHOLE_SIZE, gpu::kFarEmpty);
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
     bindPipeline(ctx, cmd, r.farSplat,
-                 {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, r.farSamples, r.lodVertices,
-                  r.motionData, r.vertexLight,
+                 {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, Binding(r.farSampleTexels),
+                  Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels),
                   Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler), t.farVisibility});
     pushConstants(ctx, cmd, r.farSplat, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdDispatchIndirect(cmd, r.farDispatch.buffer, 0);

@@ -147,7 +147,13 @@ struct FieldRenderer {
     Buffer drawCommands;        // one per (clump, LOD)
     Buffer drawCommandTemplate; // the same with instanceCount 0: copied over them every frame
     Buffer visibleList;
-    Buffer farSamples;  // gpu::GpuFarSample, per clump its shuffled samples
+    Buffer farSamples; // gpu::GpuFarSample, per clump its shuffled samples
+    // With the far field: farSamples, lodVertices, motionData and vertexLight seen as texel buffers,
+    // as the splat pass reads them (far_splat.comp).
+    VkBufferView farSampleTexels = VK_NULL_HANDLE;
+    VkBufferView lodVertexTexels = VK_NULL_HANDLE;
+    VkBufferView motionTexels = VK_NULL_HANDLE;
+    VkBufferView vertexLightTexels = VK_NULL_HANDLE;
     Buffer farList;     // per far instance this frame: (visible-list entry, samples to draw)
     Buffer farDispatch; // gpu::GpuFarDispatch: the splat pass's indirect dispatch, written by cull
     Buffer stats;

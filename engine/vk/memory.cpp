@@ -1,5 +1,6 @@
 #include "vk/memory.h"
 
+#include "core/error.h"
 #include "vk/barriers.h"
 #include "vk/context.h"
 #include "vk/vk_check.h"
@@ -124,6 +125,27 @@ Buffer createBuffer(Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, M
     buffer.allocation = ctx.memory->allocate(req, use);
     VK_CHECK(vkBindBufferMemory(ctx.device, buffer.buffer, buffer.allocation.memory, buffer.allocation.offset));
     return buffer;
+}
+
+VkBufferView createTexelBufferView(Context& ctx, const Buffer& buffer, VkFormat format, uint32_t texelBytes,
+                                   const std::string& what) {
+    VkFormatProperties properties;
+    vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice, format, &properties);
+    if (!(properties.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT))
+        throw Error(what + ": the device cannot read format " + std::to_string(int(format)) +
+                    " from a uniform texel buffer");
+    const uint64_t texels = buffer.size / texelBytes;
+    if (texels > ctx.properties.limits.maxTexelBufferElements)
+        throw Error(what + ": " + std::to_string(texels) + " texels, more than the device's maxTexelBufferElements (" +
+                    std::to_string(ctx.properties.limits.maxTexelBufferElements) + ")");
+    VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    info.buffer = buffer.buffer;
+    info.format = format;
+    info.offset = 0;
+    info.range = texels * texelBytes;
+    VkBufferView view = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateBufferView(ctx.device, &info, nullptr, &view));
+    return view;
 }
 
 void destroyBuffer(Context& ctx, Buffer& buffer) {

@@ -10,6 +10,7 @@
 #include "vk/range_allocator.h"
 
 #include <memory>
+#include <string>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -78,6 +79,13 @@ struct Image {
 
 Buffer createBuffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use);
 void destroyBuffer(Context& context, Buffer& buffer);
+
+// A view of a whole buffer (made with VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) as texels of
+// `format`, `texelBytes` each, for shaders that read it with texelFetch (a samplerBuffer). Throws
+// meadow::Error naming `what` when the device cannot read that format so, or the buffer holds
+// more texels than the device's maxTexelBufferElements. Destroy with vkDestroyBufferView.
+VkBufferView createTexelBufferView(Context& context, const Buffer& buffer, VkFormat format, uint32_t texelBytes,
+                                   const std::string& what);
 
 Image createImage2D(Context& context, VkExtent2D extent, VkFormat format, VkImageUsageFlags usage,
                     uint32_t mipLevels = 1);

@@ -234,6 +234,7 @@ void destroyPipeline(Context& ctx, Pipeline& p) {
 Binding::Binding(const Buffer& b) : buffer{b.buffer, 0, b.size} {}
 Binding::Binding(VkImageView view, VkImageLayout layout, VkSampler sampler)
     : image{sampler, view, layout}, isImage(true) {}
+Binding::Binding(VkBufferView view) : texelView(view) {}
 
 void bindPipeline(Context& ctx, VkCommandBuffer cmd, const Pipeline& p, std::initializer_list<Binding> bindings) {
     if (bindings.size() != p.bindingTypes.size())
@@ -252,11 +253,18 @@ void bindPipeline(Context& ctx, VkCommandBuffer cmd, const Pipeline& p, std::ini
         bool wantsImage = w.descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ||
                           w.descriptorType == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ||
                           w.descriptorType == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        if (wantsImage != b.isImage)
+        bool wantsTexels = w.descriptorType == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER ||
+                           w.descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+        bool isTexels = b.texelView != VK_NULL_HANDLE;
+        if (wantsImage != b.isImage || wantsTexels != isTexels)
             throw Error("pipeline " + p.name + ": binding " + std::to_string(index) + " expects " +
-                        (wantsImage ? "an image" : "a buffer"));
+                        (wantsImage    ? "an image"
+                         : wantsTexels ? "a texel buffer's view"
+                                       : "a buffer"));
         if (b.isImage)
             w.pImageInfo = &b.image;
+        else if (isTexels)
+            w.pTexelBufferView = &b.texelView;
         else
             w.pBufferInfo = &b.buffer;
         writes.push_back(w);

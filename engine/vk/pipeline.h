@@ -58,9 +58,11 @@ void destroyPipeline(Context& context, Pipeline& pipeline);
 struct Binding {
     VkDescriptorBufferInfo buffer{};
     VkDescriptorImageInfo image{};
+    VkBufferView texelView = VK_NULL_HANDLE; // a texel buffer's view (createTexelBufferView)
     bool isImage = false;
     Binding(const Buffer& b);
     Binding(VkImageView view, VkImageLayout layout, VkSampler sampler = VK_NULL_HANDLE);
+    explicit Binding(VkBufferView view);
 };
 
 // Binds the pipeline and pushes its descriptors: `bindings` must list every binding the

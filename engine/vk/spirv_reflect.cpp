@@ -39,6 +39,7 @@ enum : uint32_t {
     kDecorationDescriptorSet = 34,
     kDecorationOffset = 35,
     kDecorationSpecId = 1,
+    kDimBuffer = 5, // OpTypeImage's Dim for texel buffers
 
     kStorageUniformConstant = 0,
     kStorageUniform = 2,
@@ -62,6 +63,7 @@ struct Id {
     uint32_t constant = 0;
     uint32_t specId = ~0u; // OpSpecConstant: its SpecId decoration
     uint32_t sampled = 0;  // OpTypeImage: 1 sampled, 2 storage
+    uint32_t dim = 0;      // OpTypeImage: its Dim (kDimBuffer: a texel buffer)
     uint32_t width = 0;    // OpTypeInt, OpTypeFloat: bits
     uint32_t count = 0;    // OpTypeVector: components; OpTypeMatrix: columns; OpTypeArray: the length's id
     uint32_t arrayStride = 0;
@@ -180,10 +182,14 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
             break;
         case kOpTypeImage:
             id(1).opcode = opcode;
+            id(1).dim = words >= 4 ? w[3] : 0;
             id(1).sampled = words >= 8 ? w[7] : 0;
             break;
-        case kOpTypeSampler:
-        case kOpTypeSampledImage: id(1).opcode = opcode; break;
+        case kOpTypeSampler: id(1).opcode = opcode; break;
+        case kOpTypeSampledImage:
+            id(1).opcode = opcode;
+            id(1).typeId = words >= 3 ? w[2] : 0; // the image type
+            break;
         case kOpTypeStruct:
             id(1).opcode = opcode;
             if (id(1).members.size() > words - 2)
@@ -255,10 +261,15 @@ ShaderReflection reflectShader(std::span<const uint32_t> code, const std::string
             descriptor = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         else if (var.storageClass == kStorageUniform && type.block)
             descriptor = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        else if (type.opcode == kOpTypeImage && type.dim == kDimBuffer)
+            descriptor =
+                type.sampled == 2 ? VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
         else if (type.opcode == kOpTypeImage && type.sampled == 2)
             descriptor = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
         else if (type.opcode == kOpTypeImage)
             descriptor = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+        else if (type.opcode == kOpTypeSampledImage && type.typeId < bound && ids[type.typeId].dim == kDimBuffer)
+            descriptor = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER; // GLSL's samplerBuffer
         else if (type.opcode == kOpTypeSampledImage)
             descriptor = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         else if (type.opcode == kOpTypeSampler)

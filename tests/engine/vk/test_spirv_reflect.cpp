@@ -26,9 +26,15 @@ TEST(SpirvReflect, FarPassesLayout) {
     ShaderReflection splat = reflectShader(findShader("far_splat.comp"), "far_splat.comp");
     EXPECT_EQ(splat.localSize[0], gpu::kFarGroupSize);
     EXPECT_TRUE(splat.localSizeXSpecialized); // the threads per instance are the device's
-    // Frame; far list, dispatch, draw records, clumps, samples, LOD vertices, motion, light; the
-    // meshes' depth; the visibility buffer. The mirror plane as a push constant.
+    // Frame; far list, dispatch, draw records, clumps; samples, LOD vertices, motion, light as texel
+    // buffers (samplerBuffer: a sampled image of Dim Buffer); the meshes' depth; the visibility
+    // buffer. The mirror plane as a push constant.
     ASSERT_EQ(splat.bindings.size(), 11u);
+    EXPECT_EQ(splat.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+    for (uint32_t b = 1; b <= 4; ++b)
+        EXPECT_EQ(splat.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
+    for (uint32_t b = 5; b <= 8; ++b)
+        EXPECT_EQ(splat.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << b;
     EXPECT_EQ(splat.bindings.at(9), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     EXPECT_EQ(splat.bindings.at(10), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     EXPECT_EQ(splat.pushConstantBytes, 16u);
