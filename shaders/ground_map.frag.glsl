@@ -5,7 +5,13 @@
 #include "common.glsl"
 
 MEADOW_FRAME_BLOCK(0, 0)
-layout(set = 0, binding = 3, std430) readonly buffer VertexLight { vec4 vertexLight[]; };
+// The vertex-light buffer as uint texels (a texel buffer: llvmpipe gathers it where it would load a
+// storage buffer lane by lane; docs/BENCHMARKS.md).
+layout(set = 0, binding = 3) uniform usamplerBuffer vertexLight;
+
+vec3 ratioAt(uint texel) {
+    return uintBitsToFloat(texelFetch(vertexLight, int(texel)).rgb);
+}
 
 layout(location = 0) in vec2 inGrid;
 layout(location = 1) flat in uint inLight;
@@ -18,7 +24,7 @@ void main() {
     vec2 cell = min(floor(g), vec2(last - 1.0));
     vec2 f = g - cell;
     uint x = uint(cell.x), z = uint(cell.y), n = inResolution;
-    vec3 r00 = vertexLight[inLight + z * n + x].rgb, r10 = vertexLight[inLight + z * n + x + 1u].rgb;
-    vec3 r01 = vertexLight[inLight + (z + 1u) * n + x].rgb, r11 = vertexLight[inLight + (z + 1u) * n + x + 1u].rgb;
+    vec3 r00 = ratioAt(inLight + z * n + x), r10 = ratioAt(inLight + z * n + x + 1u);
+    vec3 r01 = ratioAt(inLight + (z + 1u) * n + x), r11 = ratioAt(inLight + (z + 1u) * n + x + 1u);
     outRatio = vec4(mix(mix(r00, r10, f.x), mix(r01, r11, f.x), f.y), 1.0);
 }

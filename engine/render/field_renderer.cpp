@@ -181,7 +181,8 @@ void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size
 void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::span<const gpu::GpuInstance> instances,
                    const std::vector<float>& skyData, const RgbaImage& atlas, const FieldScenery& scenery) {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    const VkBufferUsageFlags texels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT; // also read by the splat pass
+    // Buffers also read as texel buffers (the splat pass, the ground light map).
+    const VkBufferUsageFlags texels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
     auto deviceBuffer = [&](Buffer& buffer, const void* data, size_t bytes, VkBufferUsageFlags extra = 0) {
         buffer = createBuffer(ctx, std::max<size_t>(bytes, 16), storage | extra, MemoryUse::Device);
         if (data && bytes > 0)
@@ -225,9 +226,9 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
         r.lodVertexTexels =
             createTexelBufferView(ctx, r.lodVertices, VK_FORMAT_R32G32B32A32_UINT, 16, "the LOD vertices");
         r.motionTexels = createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32_SFLOAT, 4, "the motion data");
-        r.vertexLightTexels =
-            createTexelBufferView(ctx, r.vertexLight, VK_FORMAT_R32G32B32A32_UINT, 16, "the vertex light");
     }
+    r.vertexLightTexels =
+        createTexelBufferView(ctx, r.vertexLight, VK_FORMAT_R32G32B32A32_UINT, 16, "the vertex light");
     // (lodVertices, motionData, farSamples, farList and farDispatch are read back by the splat pass's
     // reference test.)
     deviceBuffer(r.farList, nullptr, instances.size() * 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
@@ -516,7 +517,7 @@ void recordGroundLightMap(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
     vkCmdSetViewport(cmd, 0, 1, &mapViewport);
     vkCmdSetScissor(cmd, 0, 1, &mapScissor);
     if (r.groundRect.z > 0.0f) {
-        bindPipeline(ctx, cmd, r.groundMap, {r.frameUniforms, r.instances, r.clumps, r.vertexLight});
+        bindPipeline(ctx, cmd, r.groundMap, {r.frameUniforms, r.instances, r.clumps, Binding(r.vertexLightTexels)});
         pushConstants(ctx, cmd, r.groundMap, &r.mirrorNormal, sizeof(glm::vec4));
         vkCmdDraw(cmd, 6, r.instanceCount, 0, 0);
     }

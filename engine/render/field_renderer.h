@@ -148,8 +148,9 @@ struct FieldRenderer {
     Buffer drawCommandTemplate; // the same with instanceCount 0: copied over them every frame
     Buffer visibleList;
     Buffer farSamples; // gpu::GpuFarSample, per clump its shuffled samples
-    // With the far field: farSamples, lodVertices, motionData and vertexLight seen as texel buffers,
-    // as the splat pass reads them (far_splat.comp).
+    // vertexLight seen as texel buffers, as the ground light map reads it (ground_map.frag); with the
+    // far field also farSamples, lodVertices and motionData, as the splat pass reads them
+    // (far_splat.comp).
     VkBufferView farSampleTexels = VK_NULL_HANDLE;
     VkBufferView lodVertexTexels = VK_NULL_HANDLE;
     VkBufferView motionTexels = VK_NULL_HANDLE;

@@ -45,6 +45,13 @@ TEST(SpirvReflect, FarPassesLayout) {
     EXPECT_EQ(resolve.bindings.at(2), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
 }
 
+TEST(SpirvReflect, GroundMapReadsTheVertexLightAsTexels) {
+    ShaderReflection r = reflectShader(findShader("ground_map.frag"), "ground_map.frag");
+    EXPECT_EQ(r.stage, VK_SHADER_STAGE_FRAGMENT_BIT);
+    ASSERT_EQ(r.bindings.count(3), 1u);
+    EXPECT_EQ(r.bindings.at(3), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
+}
+
 TEST(SpirvReflect, TonemapUsesStorageImages) {
     ShaderReflection r = reflectShader(findShader("tonemap.comp"), "tonemap.comp");
     EXPECT_EQ(r.localSize[0], gpu::kTonemapGroupSize);
