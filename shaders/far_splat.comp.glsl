@@ -87,13 +87,12 @@ void main() {
             if ((farSample.position.w >> bit & 1u) == 0u)
                 continue; // its own clump hides it from here
             farSample.data = texelFetch(farSamples, int(2u * (clump.far.x + k) + 1u));
-            GpuLodVertex v;
-            v.motion = texelFetch(lodVertices, int(3u * farSample.data.w + 2u));
-            uint rank = v.motion.w & 0xffffu;
-            uint q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
+            uvec4 motion = texelFetch(lodVertices, int(3u * farSample.data.w + 2u)); // GpuLodVertex::motion
+            uint rank = motion.w & 0xffffu;
+            uint q0 = inst.offsets.x + motion.y, q1 = inst.offsets.y + motion.y;
             vec3 d = vec3(0.0);
             for (uint r = 0u; r < rank; ++r) {
-                uint row = v.motion.x + 3u * r;
+                uint row = motion.x + 3u * r;
                 float q = texelFetch(motionData, int(q0 + r)).r;
                 if (blending)
                     q = mix(q, texelFetch(motionData, int(q1 + r)).r, inst.pose.z);
