@@ -274,28 +274,6 @@ FieldPacking packField(std::span<const FieldClump> clumps, std::span<const gpu::
     return p;
 }
 
-GroundLightMapLayout groundLightMapLayout(std::span<const FieldClump> clumps,
-                                          std::span<const gpu::GpuInstance> instances) {
-    glm::vec2 low(1e30f), high(-1e30f);
-    for (const gpu::GpuInstance& inst : instances) {
-        const float reach = 0.75f * clumps[inst.mesh].groundSize * std::abs(inst.positionScale.w); // > half diagonal
-        if (clumps[inst.mesh].groundResolution < 2)
-            continue;
-        low = glm::min(low, glm::vec2(inst.positionScale.x, inst.positionScale.z) - reach);
-        high = glm::max(high, glm::vec2(inst.positionScale.x, inst.positionScale.z) + reach);
-    }
-    GroundLightMapLayout map;
-    if (low.x < high.x) {
-        const glm::vec2 extent = high - low;
-        map.size = {std::clamp(uint32_t(extent.x / 0.08f), 16u, 2048u),
-                    std::clamp(uint32_t(extent.y / 0.08f), 16u, 2048u)};
-        map.rect = glm::vec4(low, 1.0f / extent.x, 1.0f / extent.y);
-    } else {
-        map.rect = glm::vec4(0.0f, 0.0f, 0.0f, 0.0f); // nothing casts: every point reads the open-ground texel
-    }
-    return map;
-}
-
 size_t skyFrameFloats(const sky::SkyDay& day) {
     return gpu::kSkyFrameHeaderFloats + size_t(day.imageWidth) * day.imageHeight * 3;
 }

@@ -45,15 +45,6 @@ void checkFieldClump(const FieldClump& clump, size_t index, uint32_t lodCount);
 FieldPacking packField(std::span<const FieldClump> clumps, std::span<const gpu::GpuInstance> instances,
                        uint32_t lodCount);
 
-// The ground light map: a texel about every 8 cm over every instance's ground grid (16 to 2048
-// a side), and its rectangle as GpuFrame::groundMap (zero when no clump casts on the ground).
-struct GroundLightMapLayout {
-    VkExtent2D size{1, 1};
-    glm::vec4 rect{0.0f};
-};
-GroundLightMapLayout groundLightMapLayout(std::span<const FieldClump> clumps,
-                                          std::span<const gpu::GpuInstance> instances);
-
 // The sky day for the skyData buffer: per frame its SH, sun and backdrop (gpu::kSkyFrameHeaderFloats
 // then the image). Throws meadow::Error for a frame of the wrong size.
 size_t skyFrameFloats(const sky::SkyDay& day);

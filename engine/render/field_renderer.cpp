@@ -3,6 +3,7 @@
 #include "far_splat.h"
 #include "render/draw_ranges.h"
 #include "render/field_packing.h"
+#include "render/ground_light_map.h"
 
 #include "vk/barriers.h"
 #include "vk/context.h"
@@ -18,6 +19,7 @@
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/packing.hpp>
 
 namespace meadow {
 
@@ -132,12 +134,7 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     GraphicsPipelineDesc instanceDesc{"instance.vert", "instance.frag", kHdrFormat, kDepthFormat};
     instanceDesc.pushConstantSize = sizeof(glm::vec4);
     r.instance = createGraphicsPipeline(ctx, instanceDesc);
-    GraphicsPipelineDesc groundMapDesc{"ground_map.vert", "ground_map.frag", kGroundLightFormat, VK_FORMAT_UNDEFINED};
-    groundMapDesc.depthTest = false;
-    groundMapDesc.depthWrite = false;
-    groundMapDesc.pushConstantSize = sizeof(glm::vec4);
-    groundMapDesc.multiplyBlend = true;
-    r.groundMap = createGraphicsPipeline(ctx, groundMapDesc);
+    r.groundMap = createComputePipeline(ctx, "ground_map.comp");
     const uint32_t farLanes = scenery.farLanes > 0 ? scenery.farLanes : farSplatLanesFor(ctx.properties);
     r.farSplat = createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4), gpu::kFarInstancesPerGroup * farLanes);
     r.farResolve = createComputePipeline(ctx, "far_resolve.comp");
@@ -158,7 +155,8 @@ void checkDraws(const FieldPacking& p) {
 // Everything the field puts in device memory, checked against what the device has before the
 // first allocation: a field too large fails here with the figures, not with a device lost later.
 void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size_t clumpCount, const RgbaImage& atlas,
-                 const FieldScenery& scenery, VkExtent2D mapSize) {
+                 const FieldScenery& scenery, const GroundLightMapLists& ground) {
+    const VkExtent2D mapSize = ground.size;
     const sky::SkyDay& day = scenery.sky;
     const uint64_t perInstanceBytes =
         sizeof(gpu::GpuInstance) + sizeof(gpu::GpuMotionState) + sizeof(float) + sizeof(gpu::GpuDrawInstance);
@@ -171,7 +169,8 @@ void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size
         2 * p.draws.size() * sizeof(gpu::GpuDrawIndexedCommand) + uint64_t(atlas.width) * atlas.height * 4 +
         uint64_t(mapSize.width) * mapSize.height * 8 + scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex) +
         scenery.terrain.indices.size() * sizeof(uint32_t) + p.farSamples.size() * sizeof(gpu::GpuFarSample) +
-        uint64_t(instanceCount) * 8 + sizeof(gpu::GpuFarDispatch);
+        uint64_t(instanceCount) * 8 + sizeof(gpu::GpuFarDispatch) + ground.texelStart.size() * sizeof(uint32_t) +
+        ground.entries.size() * sizeof(glm::uvec2);
     checkFieldMemory(ctx, neededBytes,
                      "the field (" + std::to_string(instanceCount) + " instances of " + std::to_string(clumpCount) +
                          " meshes)");
@@ -179,7 +178,8 @@ void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size
 
 // The field's buffers, filled with what packField made; the atlas, the sampler and the terrain.
 void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::span<const gpu::GpuInstance> instances,
-                   const std::vector<float>& skyData, const RgbaImage& atlas, const FieldScenery& scenery) {
+                   const GroundLightMapLists& ground, const std::vector<float>& skyData, const RgbaImage& atlas,
+                   const FieldScenery& scenery) {
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     // Buffers also read as texel buffers (the splat pass, the ground light map).
     const VkBufferUsageFlags texels = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
@@ -229,6 +229,12 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     }
     r.vertexLightTexels =
         createTexelBufferView(ctx, r.vertexLight, VK_FORMAT_R32G32B32A32_UINT, 16, "the vertex light");
+    deviceBuffer(r.groundTexelStart, ground.texelStart.data(), ground.texelStart.size() * sizeof(uint32_t), texels);
+    deviceBuffer(r.groundEntries, ground.entries.data(), ground.entries.size() * sizeof(glm::uvec2), texels);
+    r.groundTexelStartTexels =
+        createTexelBufferView(ctx, r.groundTexelStart, VK_FORMAT_R32_UINT, 4, "the ground light map's texels");
+    r.groundEntryTexels =
+        createTexelBufferView(ctx, r.groundEntries, VK_FORMAT_R32G32_UINT, 8, "the ground light map's lists");
     // (lodVertices, motionData, farSamples, farList and farDispatch are read back by the splat pass's
     // reference test.)
     deviceBuffer(r.farList, nullptr, instances.size() * 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
@@ -275,16 +281,19 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
     r.visibleCount = packed.visibleCount;
     const GroundLightMapLayout map = groundLightMapLayout(clumps, instances);
     r.groundRect = map.rect;
+    const GroundLightMapLists ground = groundLightMapLists(
+        groundCasters(packed.clumps, instances, map, glm::vec2(r.mirrorNormal.x, r.mirrorNormal.z)), map.size);
     checkDraws(packed);
-    checkMemory(ctx, packed, instances.size(), clumps.size(), atlas, scenery, map.size);
+    checkMemory(ctx, packed, instances.size(), clumps.size(), atlas, scenery, ground);
 
-    r.groundLight = createImage2D(ctx, map.size, kGroundLightFormat,
-                                  VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+    r.groundLight =
+        createImage2D(ctx, map.size, kGroundLightFormat,
+                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     const std::vector<float> skyData = packSkyDay(scenery.sky);
     r.brightestIrradiance = 0.0f;
     for (const sky::SkyFrame& frame : scenery.sky.frames)
         r.brightestIrradiance = std::max(r.brightestIrradiance, upwardIrradianceLuminance(frame.sh));
-    createBuffers(ctx, r, packed, instances, skyData, atlas, scenery);
+    createBuffers(ctx, r, packed, instances, ground, skyData, atlas, scenery);
 }
 
 } // namespace
@@ -293,16 +302,17 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance, &r.groundMap,
                         &r.farSplat, &r.farResolve})
         destroyPipeline(ctx, *p);
-    for (VkBufferView* view : {&r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.vertexLightTexels})
+    for (VkBufferView* view : {&r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.vertexLightTexels,
+                               &r.groundTexelStartTexels, &r.groundEntryTexels})
         if (*view) {
             vkDestroyBufferView(ctx.device, *view, nullptr);
             *view = VK_NULL_HANDLE;
         }
-    for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,        &r.drawInstances,
-                      &r.clumps,        &r.lodVertices, &r.indices,       &r.motionData,      &r.motionGraph,
-                      &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,    &r.drawCommandTemplate,
-                      &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices, &r.terrainIndices,
-                      &r.farSamples,    &r.farList,     &r.farDispatch})
+    for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,         &r.drawInstances,
+                      &r.clumps,        &r.lodVertices, &r.indices,       &r.motionData,       &r.motionGraph,
+                      &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,     &r.drawCommandTemplate,
+                      &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices,  &r.terrainIndices,
+                      &r.farSamples,    &r.farList,     &r.farDispatch,   &r.groundTexelStart, &r.groundEntries})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     destroyImage(ctx, r.groundLight);
@@ -492,39 +502,19 @@ void recordLightPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
             access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead | access::kComputeRead);
 }
 
-// The ground light map, with the light: cleared to open ground, then every instance's grid
-// multiplied in; left ready for the terrain's fragment shader.
+// The ground light map, with the light: every texel made again from the light pass's ratios
+// (ground_map.comp, a thread per texel); left ready for the terrain's fragment shader.
 void recordGroundLightMap(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
     if (!r.lightThisFrame)
         return;
     imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kFragmentShaderRead,
-                 VK_IMAGE_LAYOUT_UNDEFINED, access::kColorAttachmentWrite, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    VkRenderingAttachmentInfo map{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    map.imageView = r.groundLight.view;
-    map.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    map.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    map.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    map.clearValue.color = {{1.0f, 1.0f, 1.0f, 1.0f}};
-    VkRenderingInfo mapPass{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    mapPass.renderArea = {{0, 0}, r.groundLight.extent};
-    mapPass.layerCount = 1;
-    mapPass.colorAttachmentCount = 1;
-    mapPass.pColorAttachments = &map;
-    vkCmdBeginRendering(cmd, &mapPass);
-    VkViewport mapViewport{0.0f, 0.0f, float(r.groundLight.extent.width), float(r.groundLight.extent.height),
-                           0.0f, 1.0f};
-    VkRect2D mapScissor{{0, 0}, r.groundLight.extent};
-    vkCmdSetViewport(cmd, 0, 1, &mapViewport);
-    vkCmdSetScissor(cmd, 0, 1, &mapScissor);
-    if (r.groundRect.z > 0.0f) {
-        bindPipeline(ctx, cmd, r.groundMap, {r.frameUniforms, r.instances, r.clumps, Binding(r.vertexLightTexels)});
-        pushConstants(ctx, cmd, r.groundMap, &r.mirrorNormal, sizeof(glm::vec4));
-        vkCmdDraw(cmd, 6, r.instanceCount, 0, 0);
-    }
-    vkCmdEndRendering(cmd);
-    imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
-                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kFragmentShaderRead,
-                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+                 VK_IMAGE_LAYOUT_UNDEFINED, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL);
+    bindPipeline(ctx, cmd, r.groundMap,
+                 {Binding(r.groundTexelStartTexels), Binding(r.groundEntryTexels), Binding(r.vertexLightTexels),
+                  Binding(r.groundLight.view, VK_IMAGE_LAYOUT_GENERAL)});
+    dispatchCovering(cmd, r.groundMap, r.groundLight.extent.width, r.groundLight.extent.height);
+    imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL,
+                 access::kFragmentShaderRead, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
 // The HDR image and depth: near to far, so that depth testing rejects as much as it can before
@@ -676,6 +666,34 @@ FieldStats readFieldStats(const FieldRenderer& r) {
         out.trianglesDrawn += uint64_t(draws[m].instanceCount) * r.meshTriangles[m];
     }
     return out;
+}
+
+std::vector<glm::vec3> readGroundLightMap(Context& ctx, const FieldRenderer& r) {
+    const VkExtent2D extent = r.groundLight.extent;
+    const VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 8;
+    Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+    submitAndWait(ctx, [&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kFragmentShaderRead,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access::kTransferRead,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {extent.width, extent.height, 1};
+        vkCmdCopyImageToBuffer(cmd, r.groundLight.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1,
+                               &region);
+        imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kTransferRead,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, access::kFragmentShaderRead,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        barrier(cmd, access::kTransferWrite, access::kHostRead);
+    });
+    std::vector<uint16_t> halves(size_t(extent.width) * extent.height * 4);
+    std::memcpy(halves.data(), staging.mapped(), bytes);
+    destroyBuffer(ctx, staging);
+    std::vector<glm::vec3> map(size_t(extent.width) * extent.height);
+    for (size_t i = 0; i < map.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            map[i][c] = glm::unpackHalf1x16(halves[4 * i + c]);
+    return map;
 }
 
 } // namespace meadow

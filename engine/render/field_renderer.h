@@ -148,7 +148,7 @@ struct FieldRenderer {
     Buffer drawCommandTemplate; // the same with instanceCount 0: copied over them every frame
     Buffer visibleList;
     Buffer farSamples; // gpu::GpuFarSample, per clump its shuffled samples
-    // vertexLight seen as texel buffers, as the ground light map reads it (ground_map.frag); with the
+    // vertexLight seen as texel buffers, as the ground light map reads it (ground_map.comp); with the
     // far field also farSamples, lodVertices and motionData, as the splat pass reads them
     // (far_splat.comp).
     VkBufferView farSampleTexels = VK_NULL_HANDLE;
@@ -165,9 +165,14 @@ struct FieldRenderer {
     VkSampler atlasSampler = VK_NULL_HANDLE; // trilinear, stopping at the mip level whose parts stay apart
     VkSampler pointSampler = VK_NULL_HANDLE; // the depth, read by the splat pass
 
-    // The field's ground light map (ground_map.vert): the share of open-ground light reaching each
-    // point of the ground, multiplied over every instance's grid; redrawn with the light pass.
+    // The field's ground light map (render/ground_light_map.h): the share of open-ground light
+    // reaching each point of the ground, multiplied over every instance's grid; made again by
+    // ground_map.comp with the light pass, from static per-texel lists of grid cells.
     Image groundLight;
+    Buffer groundTexelStart; // uint per texel of the map, then the end: its range of groundEntries
+    Buffer groundEntries;    // uvec2 per listed grid cell, texel by texel (gpu_types.h)
+    VkBufferView groundTexelStartTexels = VK_NULL_HANDLE;
+    VkBufferView groundEntryTexels = VK_NULL_HANDLE;
     glm::vec4 groundRect{0.0f, 0.0f, 1.0f, 1.0f}; // GpuFrame::groundMap
 
     Buffer terrainVertices;
@@ -244,5 +249,9 @@ void recordFieldFrame(Context& context, FieldRenderer& renderer, VkCommandBuffer
 
 // The statistics of the last completed frame.
 FieldStats readFieldStats(const FieldRenderer& renderer);
+
+// The ground light map as the last light pass left it: RGB per texel, row by row (for tests and
+// tools; waits for the device).
+std::vector<glm::vec3> readGroundLightMap(Context& context, const FieldRenderer& renderer);
 
 } // namespace meadow

@@ -44,7 +44,6 @@ struct GraphicsPipelineDesc {
     VkCompareOp depthCompare = VK_COMPARE_OP_GREATER; // meadow uses reversed Z
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
     uint32_t pushConstantSize = 0;
-    bool multiplyBlend = false; // the output multiplies what the attachment holds
 };
 
 Pipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc);

@@ -23,6 +23,8 @@ MEADOW_CONST kCullGroupSize = 64;
 MEADOW_CONST kAnimateGroupSize = 64;
 MEADOW_CONST kLightGroupSize = 64;
 MEADOW_CONST kTonemapGroupSize = 8;
+// The ground light map (ground_map.comp): one thread per texel, in square workgroups.
+MEADOW_CONST kGroundMapGroupSize = 8;
 // The far field (far_splat.h): a splat workgroup takes kFarInstancesPerGroup far instances at once,
 // its width / kFarInstancesPerGroup threads ("lanes") striding over each one's samples; one
 // workgroup per kFarInstancesPerGroup listed instances, at most kFarMaxGroups, each then taking
@@ -49,6 +51,12 @@ MEADOW_CONST kLightVec4sPerVertex = 3;
 // 3), [28, 31) the sun direction, [32, 35) the sun disk's radiance, then from kSkyFrameHeaderFloats
 // the backdrop image (light/latlong.h layout, RGB).
 MEADOW_CONST kSkyFrameHeaderFloats = 36;
+// One grid cell in a texel's list of the ground light map (render/ground_light_map.h), a uvec2: x
+// the vertexLight vec4 of the cell's lowest grid point (row, column), y the bilinear weights along
+// the row and the column, kGroundWeightBits bits each (unorm), and the grid's points per side less
+// one in the top 8 bits (grids have at most kGroundGridMaxPoints a side).
+MEADOW_CONST kGroundWeightBits = 12;
+MEADOW_CONST kGroundGridMaxPoints = 256;
 // Debug views (GpuFrame::motion.z).
 MEADOW_CONST kDebugViewNone = 0;
 MEADOW_CONST kDebugViewLod = 1;

@@ -5,11 +5,13 @@
 #include "library/terrain.h"
 #include "light/sh.h"
 #include "render/field_renderer.h"
+#include "render/ground_light_map.h"
 #include "render/offscreen.h"
 #include "sh_light.h"
 #include "vk/memory.h"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
@@ -142,4 +144,83 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
     EXPECT_LT(worst, 1e-3 * scale) << "transfer with gradients (half floats)";
     destroyOffscreen(*context, offscreen);
     destroyFieldRenderer(*context, renderer);
+}
+
+// ground_map.comp against its CPU reference (render/ground_light_map.h) from the ratios the light
+// pass wrote: hundreds of overlapping grids, turned, mirrored and scaled, whose ratios differ
+// point by point and with the yaw bin. Within 3e-3 relative: half floats hold the map (2^-11),
+// and the lists hold the bilinear weights in 12 bits (2^-13 of a step between neighbouring points,
+// a few texels a texel). Anything more is a texel that multiplied in the wrong cells.
+TEST_F(Gpu, GroundLightMapMatchesCpuReference) {
+    FieldClump clump = staticFieldClump(makeTuftMesh(3), 1);
+    clump.yawLow = -0.3f;
+    clump.yawHigh = 0.5f;
+    clump.yawBins = 3;
+    clump.groundResolution = 4;
+    clump.groundSize = 1.0f;
+    double up[9];
+    sh::evaluate(3, glm::dvec3(0.0, 1.0, 0.0), up);
+    const double lobe[9] = {M_PI,     2 * M_PI / 3, 2 * M_PI / 3, 2 * M_PI / 3, M_PI / 4,
+                            M_PI / 4, M_PI / 4,     M_PI / 4,     M_PI / 4};
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (uint32_t point = 0; point < 16; ++point) {
+        // Open ground dimmed by a factor per point, with a tilt (band 1's x and z) that the yaw turns.
+        const double factor = 0.2 + 0.8 * unit(rng), tiltX = unit(rng) - 0.5, tiltZ = unit(rng) - 0.5;
+        for (uint32_t c = 0; c < 3; ++c)
+            for (uint32_t i = 0; i < 9; ++i) {
+                double t = lobe[i] * up[i] * factor;
+                if (i == 3)
+                    t += 0.5 * factor * tiltX;
+                if (i == 1)
+                    t += 0.5 * factor * tiltZ;
+                clump.groundTransfer.push_back(float(t));
+            }
+    }
+    FieldClump other = clump;
+    other.groundResolution = 2;
+    other.groundSize = 0.6f;
+    other.groundTransfer.resize(4 * 27);
+    std::vector<gpu::GpuInstance> instances;
+    for (uint32_t i = 0; i < 400; ++i) {
+        gpu::GpuInstance inst{};
+        const float scale = 0.5f + unit(rng);
+        inst.positionScale = glm::vec4(4.0f * unit(rng), 0.0f, 4.0f * unit(rng), i % 2 ? -scale : scale);
+        inst.yaw = -1.0f + 3.0f * unit(rng);
+        inst.mesh = i % 5 == 0 ? 1 : 0;
+        inst.boundingRadius = 1.0f;
+        instances.push_back(inst);
+    }
+    const std::vector<FieldClump> clumps = {clump, other};
+    FieldRenderer renderer = createFieldRenderer(*context, clumps, instances, testAtlas(), testScenery());
+    Offscreen offscreen = createOffscreen(*context, {16, 16});
+    renderOffscreenFrame(*context, renderer, offscreen, frameState(Camera{}, 16, 16));
+    std::vector<glm::uvec4> light(renderer.vertexLight.size / sizeof(glm::uvec4));
+    readbackBuffer(*context, renderer.vertexLight, light.data(), renderer.vertexLight.size);
+    std::vector<gpu::GpuClump> packed(clumps.size());
+    readbackBuffer(*context, renderer.clumps, packed.data(), packed.size() * sizeof(gpu::GpuClump));
+    const std::vector<glm::vec3> gpuMap = readGroundLightMap(*context, renderer);
+    const GroundLightMapLayout layout = groundLightMapLayout(clumps, instances);
+    const std::vector<GroundCaster> casters =
+        groundCasters(packed, instances, layout, glm::vec2(renderer.mirrorNormal.x, renderer.mirrorNormal.z));
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
+
+    const std::vector<glm::vec3> cpuMap = groundLightMapReference(casters, layout.size, light);
+    ASSERT_EQ(gpuMap.size(), cpuMap.size());
+    ASSERT_EQ(gpuMap.size(), size_t(layout.size.width) * layout.size.height);
+    size_t shaded = 0, differing = 0;
+    float worst = 0.0f;
+    for (size_t i = 0; i < gpuMap.size(); ++i) {
+        shaded += cpuMap[i].g < 0.9f;
+        float error = 0.0f;
+        for (int c = 0; c < 3; ++c)
+            error = std::max(error, std::abs(gpuMap[i][c] - cpuMap[i][c]) / std::max(std::abs(cpuMap[i][c]), 1e-3f));
+        differing += error > 3e-3f;
+        worst = std::max(worst, error);
+    }
+    std::printf("map %ux%u, shaded %zu, differing %zu, worst %g\n", layout.size.width, layout.size.height, shaded,
+                differing, worst);
+    EXPECT_GT(shaded, gpuMap.size() / 4) << "the grids shade a good part of the map";
+    EXPECT_EQ(differing, 0u) << "texels off by more than the rounding, worst " << worst;
 }

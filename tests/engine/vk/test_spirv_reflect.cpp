@@ -45,11 +45,18 @@ TEST(SpirvReflect, FarPassesLayout) {
     EXPECT_EQ(resolve.bindings.at(2), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
 }
 
-TEST(SpirvReflect, GroundMapReadsTheVertexLightAsTexels) {
-    ShaderReflection r = reflectShader(findShader("ground_map.frag"), "ground_map.frag");
-    EXPECT_EQ(r.stage, VK_SHADER_STAGE_FRAGMENT_BIT);
-    ASSERT_EQ(r.bindings.count(3), 1u);
-    EXPECT_EQ(r.bindings.at(3), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
+// The ground light map's pass: a thread per texel, its lists and the vertex light read as texel
+// buffers, the map written as a storage image.
+TEST(SpirvReflect, GroundMapReadsTexelsAndWritesTheMap) {
+    ShaderReflection r = reflectShader(findShader("ground_map.comp"), "ground_map.comp");
+    EXPECT_EQ(r.stage, VK_SHADER_STAGE_COMPUTE_BIT);
+    EXPECT_EQ(r.localSize[0], gpu::kGroundMapGroupSize);
+    EXPECT_EQ(r.localSize[1], gpu::kGroundMapGroupSize);
+    ASSERT_EQ(r.bindings.size(), 4u);
+    for (uint32_t b = 0; b < 3; ++b)
+        EXPECT_EQ(r.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << "binding " << b;
+    EXPECT_EQ(r.bindings.at(3), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+    EXPECT_EQ(r.pushConstantBytes, 0u);
 }
 
 TEST(SpirvReflect, TonemapUsesStorageImages) {
