@@ -669,27 +669,12 @@ FieldStats readFieldStats(const FieldRenderer& r) {
 }
 
 std::vector<glm::vec3> readGroundLightMap(Context& ctx, const FieldRenderer& r) {
-    const VkExtent2D extent = r.groundLight.extent;
-    const VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 8;
-    Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
-    submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kFragmentShaderRead,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access::kTransferRead,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = {extent.width, extent.height, 1};
-        vkCmdCopyImageToBuffer(cmd, r.groundLight.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1,
-                               &region);
-        imageBarrier(cmd, r.groundLight.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kTransferRead,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, access::kFragmentShaderRead,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        barrier(cmd, access::kTransferWrite, access::kHostRead);
-    });
-    std::vector<uint16_t> halves(size_t(extent.width) * extent.height * 4);
-    std::memcpy(halves.data(), staging.mapped(), bytes);
-    destroyBuffer(ctx, staging);
-    std::vector<glm::vec3> map(size_t(extent.width) * extent.height);
+    const std::vector<uint8_t> bytes =
+        readImageBytes(ctx, r.groundLight, VK_IMAGE_ASPECT_COLOR_BIT, 8, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                       access::kFragmentShaderRead);
+    std::vector<uint16_t> halves(bytes.size() / 2);
+    std::memcpy(halves.data(), bytes.data(), bytes.size());
+    std::vector<glm::vec3> map(halves.size() / 4);
     for (size_t i = 0; i < map.size(); ++i)
         for (int c = 0; c < 3; ++c)
             map[i][c] = glm::unpackHalf1x16(halves[4 * i + c]);

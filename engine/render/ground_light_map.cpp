@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
 
 namespace meadow {
@@ -33,12 +32,6 @@ GroundLightMapLayout groundLightMapLayout(std::span<const FieldClump> clumps,
 
 namespace {
 
-float fromBits(uint32_t u) {
-    float f;
-    std::memcpy(&f, &u, 4);
-    return f;
-}
-
 // The cell of a grid point g inside the grid (0 .. last on both axes), and where g lies in it.
 struct GridCell {
     uint32_t column, row;
@@ -63,8 +56,8 @@ glm::vec2 groundGridPoint(const GroundCaster& caster, glm::vec2 at) {
 // base + R(yaw) M p |scale| (instance.vert: M the mirror when the scale is negative), at grid
 // coordinates (p / side + 1/2) (points - 1); a map point t (texels) at world rect.xy + t / texelsPerMetre.
 std::vector<GroundCaster> groundCasters(std::span<const gpu::GpuClump> clumps,
-                                        std::span<const gpu::GpuInstance> instances,
-                                        const GroundLightMapLayout& layout, glm::vec2 mirrorNormal) {
+                                        std::span<const gpu::GpuInstance> instances, const GroundLightMapLayout& layout,
+                                        glm::vec2 mirrorNormal) {
     std::vector<GroundCaster> casters;
     if (layout.rect.z == 0.0f)
         return casters; // nothing casts: the map stays open ground
@@ -163,7 +156,7 @@ std::vector<glm::vec3> groundLightMapReference(std::span<const GroundCaster> cas
             throw Error("a ground caster reads vertex light " + std::to_string(texel) + " of " +
                         std::to_string(vertexLight.size()));
         const glm::uvec4 v = vertexLight[texel];
-        return glm::vec3(fromBits(v.x), fromBits(v.y), fromBits(v.z));
+        return glm::uintBitsToFloat(glm::uvec3(v));
     };
     for (const GroundCaster& c : casters) {
         const float last = float(c.points - 1);

@@ -50,8 +50,8 @@ glm::vec2 groundGridPoint(const GroundCaster& caster, glm::vec2 at);
 // mirrored instances reflect about (FieldRenderer::mirrorNormal). A grid of more than
 // gpu::kGroundGridMaxPoints a side is a meadow::Error naming its clump.
 std::vector<GroundCaster> groundCasters(std::span<const gpu::GpuClump> clumps,
-                                        std::span<const gpu::GpuInstance> instances,
-                                        const GroundLightMapLayout& layout, glm::vec2 mirrorNormal);
+                                        std::span<const gpu::GpuInstance> instances, const GroundLightMapLayout& layout,
+                                        glm::vec2 mirrorNormal);
 
 // What ground_map.comp reads, all static: texelStart[t] .. texelStart[t + 1] the range of
 // `entries` that texel t = y * width + x multiplies in, each a grid cell (the layout is

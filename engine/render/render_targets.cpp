@@ -16,28 +16,28 @@ void requireFormat(Context& ctx, VkFormat format, VkFormatFeatureFlags features,
         throw Error(std::string("the Vulkan device cannot use the ") + what + " format as meadow needs");
 }
 
-// Copies an image that the tonemap pass left in GENERAL layout into host memory.
-std::vector<uint8_t> readImage(Context& ctx, const Image& image, uint32_t bytesPerPixel) {
-    VkDeviceSize size = VkDeviceSize(image.extent.width) * image.extent.height * bytesPerPixel;
+} // namespace
+
+std::vector<uint8_t> readImageBytes(Context& ctx, const Image& image, VkImageAspectFlags aspect, uint32_t bytesPerPixel,
+                                    VkImageLayout layout, Access lastAccess) {
+    const VkDeviceSize size = VkDeviceSize(image.extent.width) * image.extent.height * bytesPerPixel;
     Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
     submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite, VK_IMAGE_LAYOUT_GENERAL,
-                     access::kTransferRead, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        imageBarrier(cmd, image.image, aspect, lastAccess, layout, access::kTransferRead,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageSubresource = {aspect, 0, 0, 1};
         region.imageExtent = {image.extent.width, image.extent.height, 1};
         vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &region);
-        imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kTransferRead,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, access::kComputeReadWrite, VK_IMAGE_LAYOUT_GENERAL);
+        imageBarrier(cmd, image.image, aspect, access::kTransferRead, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, lastAccess,
+                     layout);
         barrier(cmd, access::kTransferWrite, access::kHostRead);
     });
-    std::vector<uint8_t> pixels(size);
-    std::memcpy(pixels.data(), staging.mapped(), size);
+    std::vector<uint8_t> bytes(size);
+    std::memcpy(bytes.data(), staging.mapped(), size);
     destroyBuffer(ctx, staging);
-    return pixels;
+    return bytes;
 }
-
-} // namespace
 
 RenderTargets createRenderTargets(Context& ctx, VkExtent2D extent) {
     requireFormat(ctx, kHdrFormat,
@@ -77,28 +77,15 @@ void destroyRenderTargets(Context& ctx, RenderTargets& t) {
 }
 
 std::vector<uint8_t> readLdrPixels(Context& ctx, const RenderTargets& t) {
-    return readImage(ctx, t.ldr, 4);
+    return readImageBytes(ctx, t.ldr, VK_IMAGE_ASPECT_COLOR_BIT, 4, VK_IMAGE_LAYOUT_GENERAL, access::kComputeReadWrite);
 }
 
 std::vector<float> readFarDepth(Context& ctx, const RenderTargets& t) {
-    const VkDeviceSize size = VkDeviceSize(t.extent.width) * t.extent.height * sizeof(float);
-    Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
-    submitAndWait(ctx, [&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kComputeSampledRead,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, access::kTransferRead,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
-        region.imageExtent = {t.extent.width, t.extent.height, 1};
-        vkCmdCopyImageToBuffer(cmd, t.depth.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &region);
-        imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kTransferRead,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, access::kComputeSampledRead,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        barrier(cmd, access::kTransferWrite, access::kHostRead);
-    });
-    std::vector<float> depth(size / sizeof(float));
-    std::memcpy(depth.data(), staging.mapped(), size);
-    destroyBuffer(ctx, staging);
+    const std::vector<uint8_t> bytes =
+        readImageBytes(ctx, t.depth, VK_IMAGE_ASPECT_DEPTH_BIT, sizeof(float), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                       access::kComputeSampledRead);
+    std::vector<float> depth(bytes.size() / sizeof(float));
+    std::memcpy(depth.data(), bytes.data(), bytes.size());
     return depth;
 }
 
@@ -109,7 +96,8 @@ std::vector<uint64_t> readFarVisibility(Context& ctx, const RenderTargets& t) {
 }
 
 std::vector<uint16_t> readHdrPixels(Context& ctx, const RenderTargets& t) {
-    std::vector<uint8_t> bytes = readImage(ctx, t.hdr, 8);
+    const std::vector<uint8_t> bytes =
+        readImageBytes(ctx, t.hdr, VK_IMAGE_ASPECT_COLOR_BIT, 8, VK_IMAGE_LAYOUT_GENERAL, access::kComputeReadWrite);
     std::vector<uint16_t> halves(bytes.size() / 2);
     std::memcpy(halves.data(), bytes.data(), bytes.size());
     return halves;

@@ -3,6 +3,7 @@
 // buffer.
 #pragma once
 
+#include "vk/barriers.h"
 #include "vk/memory.h"
 
 #include <cstdint>
@@ -35,5 +36,10 @@ std::vector<uint16_t> readHdrPixels(Context& context, const RenderTargets& targe
 // pass left for the splats (reversed Z, row-major), and the visibility buffer the splat pass left.
 std::vector<float> readFarDepth(Context& context, const RenderTargets& targets);
 std::vector<uint64_t> readFarVisibility(Context& context, const RenderTargets& targets);
+
+// Any image's pixels (`aspect`, tightly packed rows), left in `layout` after `lastAccess`, as it
+// was; records and waits on its own command buffer.
+std::vector<uint8_t> readImageBytes(Context& context, const Image& image, VkImageAspectFlags aspect,
+                                    uint32_t bytesPerPixel, VkImageLayout layout, Access lastAccess);
 
 } // namespace meadow

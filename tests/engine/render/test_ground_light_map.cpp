@@ -49,7 +49,8 @@ Field scatteredField(uint32_t count, uint32_t seed) {
     for (uint32_t i = 0; i < count; ++i) {
         gpu::GpuInstance inst{};
         const float scale = 0.6f + 1.2f * unit(rng);
-        inst.positionScale = glm::vec4(8.0f * unit(rng), 0.3f * unit(rng), 5.0f * unit(rng), i % 3 == 1 ? -scale : scale);
+        inst.positionScale =
+            glm::vec4(8.0f * unit(rng), 0.3f * unit(rng), 5.0f * unit(rng), i % 3 == 1 ? -scale : scale);
         inst.yaw = -1.0f + 3.0f * unit(rng); // inside and outside the bins' range
         inst.mesh = i % 3;
         inst.boundingRadius = 1.0f;
@@ -170,7 +171,8 @@ TEST(GroundLightMap, ReferenceMultipliesTheGridsCoveringATexel) {
     std::vector<glm::uvec4> light(16);
     for (uint32_t i = 0; i < 16; ++i) {
         const float ratio = i < 8 ? 0.5f : 0.25f;
-        light[i] = glm::uvec4(glm::floatBitsToUint(ratio), glm::floatBitsToUint(ratio), glm::floatBitsToUint(ratio), 0u);
+        light[i] =
+            glm::uvec4(glm::floatBitsToUint(ratio), glm::floatBitsToUint(ratio), glm::floatBitsToUint(ratio), 0u);
     }
     const std::vector<glm::vec3> map = groundLightMapReference(casters, f.layout.size, light);
     auto at = [&](glm::vec2 world) {
