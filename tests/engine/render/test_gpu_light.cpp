@@ -10,6 +10,7 @@
 #include "sh_light.h"
 #include "vk/memory.h"
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -20,30 +21,47 @@
 using namespace meadow;
 using namespace meadow::test;
 
+namespace {
+
+// A static tuft of `blades` whose light takes three yaw bins over [-0.3, 0.5) radians, with a ground
+// grid of `points` a side over 1 m (its transfer left to the test).
+FieldClump clumpWithGroundGrid(uint32_t blades, uint32_t points) {
+    FieldClump clump = staticFieldClump(makeTuftMesh(blades), 1);
+    clump.yawLow = -0.3f;
+    clump.yawHigh = 0.5f;
+    clump.yawBins = 3;
+    clump.groundResolution = points;
+    clump.groundSize = 1.0f;
+    return clump;
+}
+
+// Open ground's transfer: the clamped cosine about +y, in SH.
+std::array<double, 9> openGroundTransfer() {
+    double up[9];
+    sh::evaluate(3, glm::dvec3(0.0, 1.0, 0.0), up);
+    const double lobe[9] = {M_PI,     2 * M_PI / 3, 2 * M_PI / 3, 2 * M_PI / 3, M_PI / 4,
+                            M_PI / 4, M_PI / 4,     M_PI / 4,     M_PI / 4};
+    std::array<double, 9> open;
+    for (int i = 0; i < 9; ++i)
+        open[i] = lobe[i] * up[i];
+    return open;
+}
+
+} // namespace
+
 // light.comp against an independent CPU evaluation: a static clump's unshadowed transfer lit by
 // the sky must give, for every yaw bin and mirror, the irradiance of the world sky on the
 // vertex's normal as the instance turns it (clamped cosine in SH at R M n); a transfer with
 // gradients gives T̄ and G dotted with the sky in the clump's frame (sh_light.h).
 TEST_F(Gpu, LightPassMatchesCpuReference) {
     const glm::vec2 wind = glm::normalize(glm::vec2(1.0f, 0.25f));
-    FieldClump plain = staticFieldClump(makeTuftMesh(5), 1);
-    plain.yawLow = -0.3f;
-    plain.yawHigh = 0.5f;
-    plain.yawBins = 3;
-    // A ground grid of open ground (the clamped cosine about +y) with one shaded point, a quarter
-    // of the light, in the middle.
-    plain.groundResolution = 3;
-    plain.groundSize = 1.0f;
-    {
-        double up[9];
-        sh::evaluate(3, glm::dvec3(0.0, 1.0, 0.0), up);
-        const double lobe[9] = {M_PI,     2 * M_PI / 3, 2 * M_PI / 3, 2 * M_PI / 3, M_PI / 4,
-                                M_PI / 4, M_PI / 4,     M_PI / 4,     M_PI / 4};
-        for (uint32_t point = 0; point < 9; ++point)
-            for (uint32_t c = 0; c < 3; ++c)
-                for (uint32_t i = 0; i < 9; ++i)
-                    plain.groundTransfer.push_back(float(lobe[i] * up[i] * (point == 4 ? 0.25 : 1.0)));
-    }
+    // A ground grid of open ground with one shaded point, a quarter of the light, in the middle.
+    FieldClump plain = clumpWithGroundGrid(5, 3);
+    const std::array<double, 9> open = openGroundTransfer();
+    for (uint32_t point = 0; point < 9; ++point)
+        for (uint32_t c = 0; c < 3; ++c)
+            for (uint32_t i = 0; i < 9; ++i)
+                plain.groundTransfer.push_back(float(open[i] * (point == 4 ? 0.25 : 1.0)));
     FieldClump graded = plain;
     uint64_t seed = 5;
     for (size_t i = 0; i < graded.mesh.vertices.size() * 216; ++i) {
@@ -152,16 +170,8 @@ TEST_F(Gpu, LightPassMatchesCpuReference) {
 // and the lists hold the bilinear weights in 12 bits (2^-13 of a step between neighbouring points,
 // a few texels a texel). Anything more is a texel that multiplied in the wrong cells.
 TEST_F(Gpu, GroundLightMapMatchesCpuReference) {
-    FieldClump clump = staticFieldClump(makeTuftMesh(3), 1);
-    clump.yawLow = -0.3f;
-    clump.yawHigh = 0.5f;
-    clump.yawBins = 3;
-    clump.groundResolution = 4;
-    clump.groundSize = 1.0f;
-    double up[9];
-    sh::evaluate(3, glm::dvec3(0.0, 1.0, 0.0), up);
-    const double lobe[9] = {M_PI,     2 * M_PI / 3, 2 * M_PI / 3, 2 * M_PI / 3, M_PI / 4,
-                            M_PI / 4, M_PI / 4,     M_PI / 4,     M_PI / 4};
+    FieldClump clump = clumpWithGroundGrid(3, 4);
+    const std::array<double, 9> open = openGroundTransfer();
     std::mt19937 rng(17);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (uint32_t point = 0; point < 16; ++point) {
@@ -169,7 +179,7 @@ TEST_F(Gpu, GroundLightMapMatchesCpuReference) {
         const double factor = 0.2 + 0.8 * unit(rng), tiltX = unit(rng) - 0.5, tiltZ = unit(rng) - 0.5;
         for (uint32_t c = 0; c < 3; ++c)
             for (uint32_t i = 0; i < 9; ++i) {
-                double t = lobe[i] * up[i] * factor;
+                double t = open[i] * factor;
                 if (i == 3)
                     t += 0.5 * factor * tiltX;
                 if (i == 1)
