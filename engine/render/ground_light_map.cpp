@@ -83,10 +83,7 @@ std::vector<GroundCaster> groundCasters(std::span<const gpu::GpuClump> clumps,
         const bool mirrored = inst.positionScale.w < 0.0f;
         const glm::mat2 m = mirrored ? mirror : glm::mat2(1.0f);
         c.toGrid = float(c.points - 1) / (side * scale) * m * glm::transpose(turn) * glm::inverse(toTexels);
-        const uint32_t bins = clump.light.y;
-        const int bin = std::clamp(int(std::floor((inst.yaw - clump.yawBins.x) * clump.yawBins.y)), 0, int(bins) - 1);
-        const uint32_t variant = uint32_t(bin) + (mirrored ? bins : 0u);
-        c.first = clump.ground.y + variant * c.points * c.points;
+        c.first = clump.ground.y + gpu::lightVariant(inst, clump) * c.points * c.points;
         c.low = glm::vec2(1e30f);
         c.high = glm::vec2(-1e30f);
         for (int corner = 0; corner < 4; ++corner) {
@@ -104,10 +101,12 @@ namespace {
 
 // Calls visit(texel index, cell) for every texel centre inside the caster's grid, row by row.
 template <typename Visit> void forEachCoveredTexel(const GroundCaster& c, VkExtent2D size, Visit&& visit) {
-    // A texel's centre x + 1/2 inside [low, high] has x in [low - 1/2, high - 1/2].
+    // A texel's centre x + 1/2 inside [low, high] has x in [low - 1/2, high - 1/2]; a thousandth of a
+    // texel more each way, so that rounding in the corners never drops a centre that
+    // groundGridPoint, which decides, puts on the grid's edge.
     const glm::ivec2 last(int(size.width) - 1, int(size.height) - 1);
-    const glm::ivec2 low = glm::clamp(glm::ivec2(glm::ceil(c.low - 0.5f)), glm::ivec2(0), last);
-    const glm::ivec2 high = glm::clamp(glm::ivec2(glm::floor(c.high - 0.5f)), glm::ivec2(-1), last);
+    const glm::ivec2 low = glm::clamp(glm::ivec2(glm::ceil(c.low - 0.501f)), glm::ivec2(0), last);
+    const glm::ivec2 high = glm::clamp(glm::ivec2(glm::floor(c.high - 0.499f)), glm::ivec2(-1), last);
     const float lastPoint = float(c.points - 1);
     for (int y = low.y; y <= high.y; ++y)
         for (int x = low.x; x <= high.x; ++x) {

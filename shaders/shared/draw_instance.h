@@ -37,6 +37,14 @@ struct GpuDrawInstance {
                         // 16 bits the light stride per clump vertex, high 16 bits the clump
 };
 
+// The instance's light variant (light.comp): its yaw bin, then the mirrored ones after the
+// unmirrored.
+MEADOW_DI_FN uint lightVariant(GpuInstance inst, GpuClump clump) {
+    uint bins = clump.light.y;
+    int bin = MEADOW_DI_CLAMP(int(MEADOW_DI_FLOOR((inst.yaw - clump.yawBins.x) * clump.yawBins.y)), 0, int(bins) - 1);
+    return uint(bin) + (inst.positionScale.w < 0.0f ? bins : 0u);
+}
+
 MEADOW_DI_FN GpuDrawInstance makeDrawInstance(GpuInstance inst, GpuClump clump, GpuMotionState state, float lodX,
                                               bool lodChoice) {
     GpuDrawInstance d;
@@ -47,8 +55,7 @@ MEADOW_DI_FN GpuDrawInstance makeDrawInstance(GpuInstance inst, GpuClump clump, 
     d.pose =
         vec4(MEADOW_DI_COS(inst.yaw), MEADOW_DI_SIN(inst.yaw), blend, lodChoice ? lodX - MEADOW_DI_FLOOR(lodX) : 0.0f);
     uint bins = clump.light.y;
-    int bin = MEADOW_DI_CLAMP(int(MEADOW_DI_FLOOR((inst.yaw - clump.yawBins.x) * clump.yawBins.y)), 0, int(bins) - 1);
-    uint variant = uint(bin) + (inst.positionScale.w < 0.0f ? bins : 0u);
+    uint variant = lightVariant(inst, clump);
     d.offsets =
         uvec4(clump.motion.y + state.frame * clump.motion.z, clump.motion.y + state.blendFrom * clump.motion.z,
               clump.light.x + variant * kLightVec4sPerVertex, (2u * bins * kLightVec4sPerVertex) | (inst.mesh << 16u));
