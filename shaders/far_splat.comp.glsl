@@ -4,10 +4,11 @@
 // dispatch, then every gl_NumWorkGroups-th set), gl_WorkGroupSize.x / kFarInstancesPerGroup threads
 // striding over the first `count` of each one's clump's shuffled samples. Each sample moves with the last-LOD vertex it follows (x̄ + U q at that LOD's
 // modes, blended across graph jumps, as instance.vert) and takes the light of its triangle's
-// nearest vertex to first order in that displacement, projects to a square of `side` pixels, and is kept where it is
-// nearer than the meshes' depth and, while the instance crossfades from LOD 4, where the dither
-// gives the pixel to the far field. The nearest sample of a pixel wins by a 64-bit atomicMin of
-// (depth key, RGB9E5 radiance), which is order independent; far_resolve.comp writes the winners.
+// nearest vertex to first order in that displacement, projects to a square of `side` pixels, and is kept (while the
+// instance crossfades from LOD 4) where the dither gives the pixel to the far field. The nearest sample of a pixel
+// wins by a 64-bit atomicMin of (depth key, RGB9E5 radiance), which is order independent; far_resolve.comp writes
+// the winners that are nearer than the meshes' depth (far_splat.h's farWordShows: the same picture as testing
+// each sample, with no depth fetch in the loop below).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -31,8 +32,7 @@ layout(set = 0, binding = 5) uniform usamplerBuffer farSamples; // GpuFarSample:
 layout(set = 0, binding = 6) uniform usamplerBuffer lodVertices; // GpuLodVertex: 3 texels each
 layout(set = 0, binding = 7) uniform samplerBuffer motionData;
 layout(set = 0, binding = 8) uniform usamplerBuffer vertexLight;
-layout(set = 0, binding = 9) uniform sampler2D meshDepth;
-layout(set = 0, binding = 10, std430) buffer Visibility { uint64_t visibility[]; };
+layout(set = 0, binding = 9, std430) buffer Visibility { uint64_t visibility[]; };
 // As instance.vert: the mirror plane's normal (xz).
 layout(push_constant) uniform FarParams { vec4 mirrorNormal; };
 
@@ -154,8 +154,6 @@ void main() {
                         continue;
                     if (fade > 0.0 && !lodDitherKeeps(isFadeLod, fade, uint(at.x), uint(at.y)))
                         continue;
-                    if (texelFetch(meshDepth, at, 0).r >= ndc.z)
-                        continue; // a mesh (or the terrain) is as near or nearer
                     atomicMin(visibility[uint(at.y) * uint(size.x) + uint(at.x)], word);
                 }
         }

@@ -43,9 +43,8 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
     if (frame.motion.z == gpu::kDebugViewLod)
         throw Error("farSplatReference: the LOD debug view's colours are not modelled");
     const int width = int(frame.lodScreen.z), height = int(frame.lodScreen.w);
-    if (width <= 0 || height <= 0 || in.meshDepth.size() != size_t(width) * size_t(height))
-        throw Error("farSplatReference: the mesh depth holds " + std::to_string(in.meshDepth.size()) +
-                    " values for a frame of " + std::to_string(width) + "x" + std::to_string(height));
+    if (width <= 0 || height <= 0)
+        throw Error("farSplatReference: the frame's size is " + std::to_string(width) + "x" + std::to_string(height));
     const uint64_t empty = (uint64_t(gpu::kFarEmpty) << 32) | gpu::kFarEmpty;
     std::vector<uint64_t> visibility(size_t(width) * size_t(height), empty);
     const glm::vec3 m(in.mirrorNormal.x, 0.0f, in.mirrorNormal.z);
@@ -154,8 +153,6 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
                     if (fade > 0.0f && !gpu::lodDitherKeeps(isFadeLod, fade, uint32_t(px.x), uint32_t(px.y)))
                         continue;
                     const size_t index = size_t(px.y) * size_t(width) + size_t(px.x);
-                    if (in.meshDepth[index] >= ndc.z)
-                        continue; // a mesh (or the terrain) is as near or nearer
                     visibility[index] = std::min(visibility[index], word);
                 }
         }

@@ -25,11 +25,11 @@ struct FarSplatInputs {
     std::vector<gpu::GpuLodVertex> lodVertices;
     std::vector<float> motionData;
     std::vector<glm::uvec4> vertexLight;
-    std::vector<float> meshDepth; // reversed-Z depth the mesh pass wrote, row-major, frame.lodScreen.zw pixels
 };
 
 // The visibility buffer (far_splat.h's words; gpu::kFarEmpty in both halves where no sample won),
-// row-major over frame.lodScreen.zw pixels. The LOD debug view's colours are not modelled: throws
+// row-major over frame.lodScreen.zw pixels, before the resolve pass tests it against the meshes'
+// depth (gpu::farWordShows). The LOD debug view's colours are not modelled: throws
 // meadow::Error for a frame in it, and for inputs that index outside their arrays.
 std::vector<uint64_t> farSplatReference(const FarSplatInputs& inputs);
 

@@ -573,7 +573,8 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
 }
 
 // The far field (far_splat.h): the visibility buffer emptied, every far instance's samples splatted
-// against the meshes' depth, the winners written into the HDR image (left in GENERAL layout).
+// into it, the winners nearer than the meshes' depth written into the HDR image (left in GENERAL
+// layout).
 void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t, GpuTimer* timer) {
     imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kDepthAttachment,
                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, access::kComputeSampledRead,
@@ -586,14 +587,14 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
     bindPipeline(ctx, cmd, r.farSplat,
                  {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, Binding(r.farSampleTexels),
-                  Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels),
-                  Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler), t.farVisibility});
+                  Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), t.farVisibility});
     pushConstants(ctx, cmd, r.farSplat, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdDispatchIndirect(cmd, r.farDispatch.buffer, 0);
     markPass(timer, cmd, "farSplat");
     barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite);
     bindPipeline(ctx, cmd, r.farResolve,
-                 {r.frameUniforms, t.farVisibility, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL)});
+                 {r.frameUniforms, t.farVisibility, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL),
+                  Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler)});
     dispatchCovering(cmd, r.farResolve, t.extent.width, t.extent.height);
 }
 

@@ -43,6 +43,11 @@ inline uint farFloatBits(float f) {
     std::memcpy(&u, &f, sizeof u);
     return u;
 }
+inline float farUintBitsToFloat(uint u) {
+    float f;
+    std::memcpy(&f, &u, sizeof f);
+    return f;
+}
 inline float farLdexp(float x, int e) {
     return std::ldexp(x, e);
 }
@@ -83,6 +88,7 @@ inline int farIndex(uint i) {
 #define MEADOW_FAR_PRECISE precise
 #define FarVec3 vec3
 #define farFloatBits(f) floatBitsToUint(f)
+#define farUintBitsToFloat(u) uintBitsToFloat(u)
 #define farLdexp(x, e) ldexp(x, e)
 #define farMax(a, b) max(a, b)
 #define farMin(a, b) min(a, b)
@@ -107,6 +113,15 @@ MEADOW_FAR_FCONST kRgb9e5Max = 65408.0f; // (2^9 - 1) / 2^9 * 2^(31 - 15)
 // The key of a reversed-Z depth in [0, 1] (1 at the near plane): nearer is smaller.
 MEADOW_FAR_FN uint farDepthKey(float depth) {
     return ~farFloatBits(farMax(depth, 0.0f));
+}
+
+// Whether a visibility word's sample shows over the meshes: its depth (the key's complement, a
+// reversed-Z depth) nearer than the depth the mesh pass left at its pixel. The resolve pass tests
+// the word that won, not each sample as it lands: the winner is the nearest of the pixel's samples,
+// so if it is behind the meshes every other one is too, and the picture is the same. An empty
+// word (depth 0, infinitely far) never shows.
+MEADOW_FAR_FN bool farWordShows(uint depthKey, float meshDepth) {
+    return farUintBitsToFloat(~depthKey) > meshDepth;
 }
 
 // Non-negative finite radiance to RGB9E5; values above kRgb9e5Max saturate, negative ones are 0.
@@ -289,6 +304,7 @@ MEADOW_FAR_FN float farCoverageGain(GpuClump clump, float size, float elevation)
 #else
 #undef FarVec3
 #undef farFloatBits
+#undef farUintBitsToFloat
 #undef farLdexp
 #undef farMax
 #undef farMin

@@ -41,6 +41,22 @@ TEST(FarSplat, NearerDepthsHaveSmallerKeys) {
     EXPECT_LT(word(0.0f, 0.0f, 0.0f, 0.0f), (uint64_t(kFarEmpty) << 32) | kFarEmpty); // any sample beats empty
 }
 
+// The resolve's test: a word shows where its depth is nearer than the meshes' (strictly: the meshes
+// win ties, as the splat pass's per-sample test did); an empty word never shows, not even over the
+// sky (depth 0).
+TEST(FarSplat, AWordShowsOnlyWhereItIsNearerThanTheMeshes) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int i = 0; i < 10000; ++i) {
+        const float sample = u(rng), mesh = u(rng);
+        EXPECT_EQ(farWordShows(farDepthKey(sample), mesh), sample > mesh) << sample << " " << mesh;
+    }
+    EXPECT_FALSE(farWordShows(farDepthKey(0.25f), 0.25f));
+    EXPECT_TRUE(farWordShows(farDepthKey(std::nextafter(0.25f, 1.0f)), 0.25f));
+    EXPECT_TRUE(farWordShows(farDepthKey(1e-30f), 0.0f));
+    EXPECT_FALSE(farWordShows(kFarEmpty, 0.0f));
+}
+
 TEST(FarSplat, TheMinimumIsTheSameInAnyOrder) {
     // Many samples on few pixels, equal depths included: the kept word per pixel does not depend
     // on the order the samples arrive in.

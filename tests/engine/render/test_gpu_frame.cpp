@@ -293,7 +293,7 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
                                                 renderer.lodVertices.size / sizeof(gpu::GpuLodVertex));
     in.motionData = readAll<float>(*context, renderer.motionData, renderer.motionData.size / sizeof(float));
     in.vertexLight = readAll<glm::uvec4>(*context, renderer.vertexLight, renderer.vertexLight.size / 16);
-    in.meshDepth = readFarDepth(*context, offscreen.targets);
+    const std::vector<float> meshDepth = readFarDepth(*context, offscreen.targets);
     const std::vector<uint64_t> gpuWords = readFarVisibility(*context, offscreen.targets);
     const std::vector<uint64_t> cpuWords = farSplatReference(in);
     const std::vector<uint16_t> hdr = readHdrPixels(*context, offscreen.targets);
@@ -331,9 +331,10 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
     EXPECT_LE(differing, covered / 100) << "pixels whose nearest sample differs, of " << covered;
     EXPECT_GT(identical, covered / 2) << "pixels with the same word, bit for bit, of " << covered;
 
-    // The resolve pass: every pixel a sample won holds that sample's radiance in the HDR image
-    // (to half-float precision).
-    size_t resolved = 0, wrong = 0;
+    // The resolve pass: every pixel whose winning sample lies nearer than the meshes holds that
+    // sample's radiance in the HDR image (to half-float precision); where the meshes are as near
+    // or nearer, the HDR image keeps the mesh pass's colour, which is almost never the sample's.
+    size_t resolved = 0, wrong = 0, hidden = 0, hiddenButWritten = 0;
     for (size_t i = 0; i < gpuWords.size(); ++i) {
         if (gpuWords[i] == empty)
             continue;
@@ -344,11 +345,19 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
             const float got = glm::unpackHalf1x16(hdr[i * 4 + size_t(c)]);
             same = same && std::abs(got - want[c]) <= 1e-3f * std::max(want[c], 1e-3f);
         }
-        ++resolved;
-        wrong += !same;
+        if (gpu::farWordShows(uint32_t(gpuWords[i] >> 32), meshDepth[i])) {
+            ++resolved;
+            wrong += !same;
+        } else {
+            ++hidden;
+            hiddenButWritten += same;
+        }
     }
+    std::printf("resolved %zu, hidden behind the meshes %zu\n", resolved, hidden);
     EXPECT_GT(resolved, 1000u);
     EXPECT_EQ(wrong, 0u) << "of " << resolved << " pixels the far field won";
+    EXPECT_GT(hidden, 100u) << "samples behind the meshes: the resolve's depth test is exercised";
+    EXPECT_LE(hiddenButWritten, hidden / 20) << "of " << hidden << " pixels whose sample lies behind the meshes";
 }
 
 // With the far field, its two passes are timed apart, between the draw and the tone map.
