@@ -79,13 +79,24 @@ void main() {
             eye -= 2.0 * dot(eye, m) * m;
         float azimuth = farEyeAzimuth(eye.x, eye.z);
         uint instance = entry & kLodEntryIndexMask;
-        for (uint k = lane; k < count; k += lanes) {
+        uint next = lane;
+        for (;;) {
+            // The next of this thread's samples that its own clump does not hide from here, found in
+            // a loop of its own: a SIMD row (lavapipe's, or a GPU's warp) runs the rest of the body
+            // once for every sample some lane draws, and about 60 % are hidden, so testing them in
+            // the body would run it for nearly every sample (docs/BENCHMARKS.md).
             GpuFarSample farSample;
-            farSample.position = texelFetch(farSamples, int(2u * (clump.far.x + k)));
-            uint bit = farVisibilityBitAt(azimuth, elevation, farSampleRandom(instance, k + kFarAzimuthStream),
-                                          farSampleRandom(instance, k + kFarElevationStream));
-            if ((farSample.position.w >> bit & 1u) == 0u)
-                continue; // its own clump hides it from here
+            for (; next < count; next += lanes) {
+                farSample.position = texelFetch(farSamples, int(2u * (clump.far.x + next)));
+                uint bit = farVisibilityBitAt(azimuth, elevation, farSampleRandom(instance, next + kFarAzimuthStream),
+                                              farSampleRandom(instance, next + kFarElevationStream));
+                if ((farSample.position.w >> bit & 1u) != 0u)
+                    break;
+            }
+            if (next >= count)
+                break;
+            uint k = next;
+            next += lanes;
             farSample.data = texelFetch(farSamples, int(2u * (clump.far.x + k) + 1u));
             uvec4 motion = texelFetch(lodVertices, int(3u * farSample.data.w + 2u)); // GpuLodVertex::motion
             uint rank = motion.w & 0xffffu;
