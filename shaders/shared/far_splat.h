@@ -115,13 +115,18 @@ MEADOW_FAR_FN uint farDepthKey(float depth) {
     return ~farFloatBits(farMax(depth, 0.0f));
 }
 
-// Whether a visibility word's sample shows over the meshes: its depth (the key's complement, a
-// reversed-Z depth) nearer than the depth the mesh pass left at its pixel. The resolve pass tests
+// The reversed-Z depth a key was made from (farDepthKey's inverse; 0 for kFarEmpty).
+MEADOW_FAR_FN float farKeyDepth(uint depthKey) {
+    return farUintBitsToFloat(~depthKey);
+}
+
+// Whether a visibility word's sample shows over the meshes: its depth (farKeyDepth) nearer than
+// the depth the mesh pass left at its pixel. The resolve pass tests
 // the word that won, not each sample as it lands: the winner is the nearest of the pixel's samples,
 // so if it is behind the meshes every other one is too, and the picture is the same. An empty
 // word (depth 0, infinitely far) never shows.
 MEADOW_FAR_FN bool farWordShows(uint depthKey, float meshDepth) {
-    return farUintBitsToFloat(~depthKey) > meshDepth;
+    return farKeyDepth(depthKey) > meshDepth;
 }
 
 // Non-negative finite radiance to RGB9E5; values above kRgb9e5Max saturate, negative ones are 0.

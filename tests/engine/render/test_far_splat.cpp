@@ -38,6 +38,9 @@ TEST(FarSplat, NearerDepthsHaveSmallerKeys) {
     EXPECT_LT(farDepthKey(1.0f), farDepthKey(std::nextafter(1.0f, 0.0f)));
     EXPECT_LT(farDepthKey(1e-30f), farDepthKey(0.0f));
     EXPECT_EQ(farDepthKey(-0.5f), farDepthKey(0.0f)); // behind the far end: as far as can be
+    for (float depth : {0.0f, 1e-30f, 0.25f, 0.75f, 1.0f})
+        EXPECT_EQ(farKeyDepth(farDepthKey(depth)), depth); // the key gives its depth back
+    EXPECT_EQ(farKeyDepth(kFarEmpty), 0.0f);
     EXPECT_LT(word(0.0f, 0.0f, 0.0f, 0.0f), (uint64_t(kFarEmpty) << 32) | kFarEmpty); // any sample beats empty
 }
 

@@ -317,10 +317,8 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
         const gpu::FarVec3 a = gpu::unpackRgb9e5(uint32_t(gpuWords[i])), b = gpu::unpackRgb9e5(uint32_t(cpuWords[i]));
         const float largest = std::max({a.x, a.y, a.z, b.x, b.y, b.z, 1e-6f});
         const float colour = std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)}) / largest;
-        float depthA, depthB;
-        const uint32_t keyA = ~uint32_t(gpuWords[i] >> 32), keyB = ~uint32_t(cpuWords[i] >> 32);
-        std::memcpy(&depthA, &keyA, 4);
-        std::memcpy(&depthB, &keyB, 4);
+        const float depthA = gpu::farKeyDepth(uint32_t(gpuWords[i] >> 32));
+        const float depthB = gpu::farKeyDepth(uint32_t(cpuWords[i] >> 32));
         differing += colour > 0.01f || std::abs(depthA - depthB) > 1e-5f * std::max(depthA, depthB);
     }
     std::printf("far instances %u, covered %zu, one-sided %zu, differing %zu, identical %zu\n", dispatch.count, covered,
