@@ -101,7 +101,7 @@ int runBenchWith(const Args& argv, const BenchLibrarySource& source) {
     const std::vector<gpu::GpuInstance> field =
         clumpCount ? tileField(library.field.clumpInstances, *clumpCount) : fieldInstances(library);
     std::vector<FieldClump> clumps = fieldClumps(library);
-    FieldScenery scenery = fieldScenery(library);
+    FieldScenery scenery = fieldScenery(library, fieldOptions.lodTolerance);
     applyFieldOptions(fieldOptions, clumps, scenery);
 
     Context ctx;

@@ -74,7 +74,7 @@ int runRender(const Args& argv) {
     createContext(ctx, contextOptionsFromArgs(args));
     int status = 0;
     {
-        FieldScenery scenery = fieldScenery(library);
+        FieldScenery scenery = fieldScenery(library, fieldOptions.lodTolerance);
         std::vector<FieldClump> clumps = fieldClumps(library);
         applyFieldOptions(fieldOptions, clumps, scenery);
         FieldRenderer renderer = createFieldRenderer(ctx, clumps, fieldInstances(library), library.atlas, scenery);

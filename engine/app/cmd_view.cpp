@@ -667,7 +667,7 @@ int runView(const Args& argv) {
 
     initWindowSystem(); // no display: say so before the library loads
     Library library = ensureLibrary(scene);
-    FieldScenery scenery = fieldScenery(library);
+    FieldScenery scenery = fieldScenery(library, fieldOptions.lodTolerance);
     std::vector<FieldClump> clumps = fieldClumps(library);
     applyFieldOptions(fieldOptions, clumps, scenery);
     const GroundHeight ground(scenery.terrain);

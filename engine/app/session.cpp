@@ -24,12 +24,16 @@ const char* const kFieldOptionsHelp =
   --far-lod0            with --far-radius: the clumps the far field would take are drawn as
                         LOD 0 meshes instead, everything else as with the far field (the far
                         field's own reference); --debug-lod shows them in the far field's colour
+  --lod-tolerance PX    the screen-space error at which each coarser LOD takes over: its RMS
+                        distance from the full mesh, in pixels (default 0.3; 0.05 to 4). Larger
+                        is faster and coarser: the switch radii scale with it
 )";
 
 void addFieldOptions(CommandSpec& spec) {
     spec.valueOptions.insert("--far-radius");
     spec.switchOptions.insert("--lod0");
     spec.switchOptions.insert("--far-lod0");
+    spec.valueOptions.insert("--lod-tolerance");
 }
 
 FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
@@ -44,6 +48,10 @@ FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
     if (options.farLod0 && !(options.farRadius > 0.0f))
         throw Error("meadow " + args.command +
                     ": --far-lod0 draws the far field's clumps as LOD 0 meshes: it needs --far-radius PX");
+    options.lodTolerance = args.f32("--lod-tolerance", kDefaultLodTolerancePixels, 0.05f, 4.0f);
+    if (options.lod0 && args.has("--lod-tolerance"))
+        throw Error("meadow " + args.command +
+                    ": --lod0 draws every clump at full detail, so no LOD takes over: leave out --lod-tolerance");
     return options;
 }
 

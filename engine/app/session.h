@@ -20,16 +20,18 @@ void addEngineOptions(CommandSpec& spec);
 // Options of commands that take a scene (--preset, --seed).
 void addSceneOptions(CommandSpec& spec);
 
-// Options of commands that draw the field (render, bench, view): --far-radius PX, --lod0, --far-lod0.
+// Options of commands that draw the field (render, bench, view): --far-radius PX, --lod0, --far-lod0,
+// --lod-tolerance PX.
 extern const char* const kFieldOptionsHelp;
 void addFieldOptions(CommandSpec& spec);
 struct FieldOptions {
     float farRadius = 0.0f; // px; 0: no far field
     bool lod0 = false;      // every clump at full detail: the reference the LODs and the far field approximate
     bool farLod0 = false;   // the far field's clumps as LOD 0 meshes: the far field's own reference
+    float lodTolerance = kDefaultLodTolerancePixels; // px of RMS error where each LOD takes over
 };
-// Read and checked before any work starts; applied to the library's clumps and scenery with
-// applyFieldOptions.
+// Read and checked before any work starts; fieldScenery takes lodTolerance, and applyFieldOptions
+// applies the rest to the library's clumps and scenery.
 FieldOptions fieldOptionsFromArgs(const ParsedArgs& args);
 void applyFieldOptions(const FieldOptions& options, std::vector<FieldClump>& clumps, FieldScenery& scenery);
 

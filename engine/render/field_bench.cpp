@@ -93,6 +93,11 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     for (size_t m = 0; m < stats.visiblePerMesh.size(); ++m)
         perLod[m % renderer.lodCount] += stats.visiblePerMesh[m];
     j["instancesPerLod"] = perLod;
+    // Where each coarser LOD takes over (px of projected radius; --lod-tolerance scales them).
+    std::vector<float> switchRadii;
+    for (uint32_t i = 0; i + 1 < renderer.lodCount; ++i)
+        switchRadii.push_back(renderer.lodParams.switchRadius[i]);
+    j["lodSwitchRadii"] = switchRadii;
     j["visibleInstances"] = stats.visibleInstances;
     // The far field (--far-radius): instances drawn as surface samples (a crossfading one counts
     // here and at LOD 4) and the splats they drew, in the last measured frame.

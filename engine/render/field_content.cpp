@@ -6,7 +6,9 @@
 
 namespace meadow {
 
-FieldScenery fieldScenery(const Library& library) {
+FieldScenery fieldScenery(const Library& library, float lodTolerancePixels) {
+    if (!(lodTolerancePixels > 0.0f))
+        throw Error("fieldScenery: the LOD tolerance must be above 0 px");
     const PlacementStats& stats = library.field.stats;
     const glm::vec2 half = 0.5f * stats.tileSize * glm::vec2(float(stats.tilesX), float(stats.tilesY));
     // 1 m spacing follows hills of tens of metres within millimetres; 20 m of margin ease them
@@ -20,9 +22,9 @@ FieldScenery fieldScenery(const Library& library) {
     p.hysteresis = 0.05f;
     // A sphere of radius R covering r pixels shows an error e at r e / R pixels: LOD i + 1 may
     // take over below r = tolerance R / e_(i+1), for the clump whose error is largest for its size.
-    // 0.3 px of RMS error: at 1 px the far LODs' thinner silhouettes (their Hausdorff distance is
-    // 5-10x the RMS) showed as a sparser field from ~10 m on (docs/BENCHMARKS.md).
-    const float tolerancePixels = 0.3f;
+    // 0.3 px of RMS error by default: at 1 px LOD 4's thinner silhouettes (its Hausdorff distance is
+    // 5-10x the RMS) showed as a sparser field from ~10 m on, and LODs 2-3 lose area, so the field
+    // darkens where they are drawn (docs/BENCHMARKS.md).
     std::vector<float> radius(library.clumps.size(), 0.0f);
     for (const gpu::GpuInstance& inst : library.field.clumpInstances)
         radius[inst.mesh] = std::max(radius[inst.mesh], inst.boundingRadius);
@@ -31,7 +33,7 @@ FieldScenery fieldScenery(const Library& library) {
         for (size_t c = 0; c < library.clumps.size(); ++c) {
             const double e = library.clumps[c].lods[i + 1].error.deformed.rms;
             if (e > 0.0 && radius[c] > 0.0f)
-                r = std::min(r, float(tolerancePixels * radius[c] / e));
+                r = std::min(r, float(lodTolerancePixels * radius[c] / e));
         }
         // Bands must not overlap: each switch lies below the previous one's band.
         if (i > 0)

@@ -9,9 +9,14 @@
 
 namespace meadow {
 
+// The default screen-space error of the levels of detail (--lod-tolerance): each LOD's RMS distance
+// from the full mesh over simulated frames, in pixels, where it takes over.
+inline constexpr float kDefaultLodTolerancePixels = 0.3f;
+
 // The library's terrain, wind direction, LOD choice and sky, as the field renderer draws them. The
-// switch radii put each LOD's error (RMS distance over simulated frames) at about 0.3 pixels.
-FieldScenery fieldScenery(const Library& library);
+// switch radii put each LOD's error (RMS distance over simulated frames) at `lodTolerancePixels`
+// (> 0) for the clump whose error is largest for its size: they scale with it.
+FieldScenery fieldScenery(const Library& library, float lodTolerancePixels = kDefaultLodTolerancePixels);
 
 // The library's clumps (mean pose, LODs, motion, light transfer), then its rocks (static, with
 // their LODs), as the field renderer draws them. Deterministic.

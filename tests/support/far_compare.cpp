@@ -3,6 +3,7 @@
 //
 //   meadow_far_compare TRUTH TRUTH_LOD APPROX APPROX_LOD [--region LOD_VIEW]... [--reference REF]
 //                      [--max-colour C] [--coverage-ratio LO,HI] [--min-ssim S] [--ssim-margin M]
+//                      [--lods FIRST,LAST]
 //
 // TRUTH and APPROX are renders of one frame; the *_LOD images are the same frames in the LOD view
 // (`--debug-lod`), where every clump and rock shows one of six known colours (LODs 0 to 4 and the
@@ -10,7 +11,9 @@
 // number of times larger (supersampled): they are brought down by averaging. The region is every
 // pixel that shows the far field's colour in APPROX_LOD, TRUTH_LOD (the far field's clumps drawn as
 // LOD 0 meshes with --far-lod0 show it too) or any --region LOD view: where the far field is, or
-// should be. Over the region:
+// should be. --lods FIRST,LAST widens it to the colours of LODs FIRST to LAST (5: the far field):
+// 0,5 is every plant pixel of either image, 1,3 where the approximation draws LODs 1 to 3 (a --lod0
+// truth shows only LOD 0). Over the region:
 //   - mean colour: linear RGB of TRUTH and APPROX, per channel, relative to the truth's
 //     (fails above C, default 0.03);
 //   - plant coverage: the share of region pixels that are plant in TRUTH_LOD and APPROX_LOD; fails
@@ -93,11 +96,6 @@ bool isPlant(const Image& image, int x, int y) {
     return showsLodColour(image, x, y, 0, 5);
 }
 
-// The far field (far_splat.comp's kFarDebugColor).
-bool isFarColour(const Image& image, int x, int y) {
-    return showsLodColour(image, x, y, 5, 5);
-}
-
 float encode(float c) {
     return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
@@ -171,7 +169,8 @@ double ssim(const Image& a, const Image& b, const std::vector<uint8_t>& region) 
 
 int usage() {
     std::fputs("usage: meadow_far_compare TRUTH TRUTH_LOD APPROX APPROX_LOD [--region LOD_VIEW]... [--reference REF]\n"
-               "                          [--max-colour C] [--coverage-ratio LO,HI] [--min-ssim S] [--ssim-margin M]\n",
+               "                          [--max-colour C] [--coverage-ratio LO,HI] [--min-ssim S] [--ssim-margin M]\n"
+               "                          [--lods FIRST,LAST]\n",
                stderr);
     return 2;
 }
@@ -182,6 +181,7 @@ int main(int argc, char** argv) {
     if (argc < 5)
         return usage();
     double maxColour = 0.03, coverageLow = 0.95, coverageHigh = 1.05, minSsim = 0.0, margin = 0.0;
+    int firstLod = 5, lastLod = 5; // the LOD view colours that make the region: the far field's
     const char* referencePath = nullptr;
     std::vector<const char*> regionPaths;
     for (int i = 5; i < argc; i += 2) {
@@ -196,6 +196,10 @@ int main(int argc, char** argv) {
             maxColour = std::atof(argv[i + 1]);
         else if (option == "--coverage-ratio") {
             if (std::sscanf(argv[i + 1], "%lf,%lf", &coverageLow, &coverageHigh) != 2)
+                return usage();
+        } else if (option == "--lods") {
+            if (std::sscanf(argv[i + 1], "%d,%d", &firstLod, &lastLod) != 2 || firstLod < 0 || lastLod > 5 ||
+                firstLod > lastLod)
                 return usage();
         } else if (option == "--min-ssim")
             minSsim = std::atof(argv[i + 1]);
@@ -237,14 +241,14 @@ int main(int argc, char** argv) {
     size_t farPixels = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            bool far = isFarColour(approxLod, x, y);
+            bool far = showsLodColour(approxLod, x, y, firstLod, lastLod);
             for (const Image& image : regionLods)
-                far = far || isFarColour(image, x, y);
+                far = far || showsLodColour(image, x, y, firstLod, lastLod);
             for (int dy = 0; dy < k && !far; ++dy)
                 for (int dx = 0; dx < k && !far; ++dx)
-                    far = isFarColour(truthLod, k * x + dx, k * y + dy);
+                    far = showsLodColour(truthLod, k * x + dx, k * y + dy, firstLod, lastLod);
             region[size_t(y) * w + x] = far;
-            farPixels += isFarColour(approxLod, x, y);
+            farPixels += showsLodColour(approxLod, x, y, firstLod, lastLod);
         }
     size_t regionPixels = 0;
     double meanTruth[3] = {0, 0, 0}, meanApprox[3] = {0, 0, 0};
@@ -272,8 +276,9 @@ int main(int argc, char** argv) {
             }
         }
     if (farPixels < 50) {
-        std::fprintf(stderr, "far_compare: the far field covers %zu pixels of %s: too few to compare\n", farPixels,
-                     argv[4]);
+        std::fprintf(stderr,
+                     "far_compare: LODs %d to %d (5: the far field) cover %zu pixels of %s: too few to compare\n",
+                     firstLod, lastLod, farPixels, argv[4]);
         return 1;
     }
     if (plantTruth == 0.0 || plantApprox == 0.0) {
@@ -293,12 +298,14 @@ int main(int argc, char** argv) {
     const double s = ssim(approx, truth, region);
     const double sReference = referencePath ? ssim(reference, truth, region) : 0.0;
 
-    std::printf("far_compare: region %zu px (far field %zu px); mean linear RGB truth %.4f %.4f %.4f, approximation "
+    const std::string shown =
+        firstLod == 5 ? "far field" : "LODs " + std::to_string(firstLod) + " to " + std::to_string(lastLod);
+    std::printf("far_compare: region %zu px (%s %zu px); mean linear RGB truth %.4f %.4f %.4f, approximation "
                 "%.4f %.4f %.4f (error %.2f%%, allowed %.2f%%); plant coverage truth %.3f, approximation %.3f "
                 "(ratio %.3f, allowed %.2f to %.2f); SSIM %.3f",
-                regionPixels, farPixels, meanTruth[0], meanTruth[1], meanTruth[2], meanApprox[0], meanApprox[1],
-                meanApprox[2], 100.0 * colourError, 100.0 * maxColour, coverageTruth, coverageApprox, coverageRatio,
-                coverageLow, coverageHigh, s);
+                regionPixels, shown.c_str(), farPixels, meanTruth[0], meanTruth[1], meanTruth[2], meanApprox[0],
+                meanApprox[1], meanApprox[2], 100.0 * colourError, 100.0 * maxColour, coverageTruth, coverageApprox,
+                coverageRatio, coverageLow, coverageHigh, s);
     if (referencePath)
         std::printf(" (reference %.3f)", sReference);
     if (bothPixels > 0) {
@@ -312,6 +319,6 @@ int main(int argc, char** argv) {
     if (referencePath)
         ok = ok && s >= sReference - margin;
     if (!ok)
-        std::fprintf(stderr, "far_compare: %s does not match %s over the far field's region\n", argv[3], argv[1]);
+        std::fprintf(stderr, "far_compare: %s does not match %s over the region\n", argv[3], argv[1]);
     return ok ? 0 : 1;
 }

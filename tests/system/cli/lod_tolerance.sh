@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# --lod-tolerance: the switch radii scale with the screen-space error it allows, and a larger one
+# draws fewer triangles. The ci field from its own camera at 640x360, benched at the default 0.3 px
+# and at 0.9 px: every radius 3 times the default's, fewer triangles, and fewer instances at LOD 0
+# and 1 (the coarser LODs take them).
+#   lod_tolerance.sh MEADOW SCENE OUTDIR
+set -euo pipefail
+meadow="$1"; scene="$2"; out="$3"
+mkdir -p "$out"
+"$meadow" bench "$scene" --preset ci --size 640x360 --frames 2 --json "$out/lod-default.json" >/dev/null
+"$meadow" bench "$scene" --preset ci --size 640x360 --frames 2 --lod-tolerance 0.9 --json "$out/lod-coarse.json" >/dev/null
+python3 - "$out/lod-default.json" "$out/lod-coarse.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+ra, rb = a["lodSwitchRadii"], b["lodSwitchRadii"]
+assert len(ra) == 4 and len(rb) == 4, (ra, rb)
+assert all(x > y > 0 for x, y in zip(ra, ra[1:])), ra
+for x, y in zip(ra, rb):
+    assert abs(y / x - 3.0) < 1e-4, (ra, rb)
+assert b["trianglesPerFrame"] < a["trianglesPerFrame"], (a["trianglesPerFrame"], b["trianglesPerFrame"])
+fine = lambda j: j["instancesPerLod"][0] + j["instancesPerLod"][1]
+assert fine(b) < fine(a), (a["instancesPerLod"], b["instancesPerLod"])
+print("switch radii", ["%.1f" % x for x in ra], "->", ["%.1f" % x for x in rb],
+      "; triangles", a["trianglesPerFrame"], "->", b["trianglesPerFrame"],
+      "; instances per LOD", a["instancesPerLod"], "->", b["instancesPerLod"])
+PY
