@@ -131,11 +131,21 @@ int runInspect(const Args& argv) {
         // The five levels of detail (precompute/lod): LOD 0 the whole mesh, then ever fewer triangles,
         // each with the motion modes it plays and its error against LOD 0 at rest and over the motion.
         clump["lods"] = nlohmann::json::array();
+        // Each LOD's triangle area in the mean pose: what a coarser LOD loses besides its silhouette.
+        std::array<double, kLodCount> area{};
+        for (uint32_t l = 0; l < kLodCount; ++l)
+            for (size_t t = 0; t + 2 < c.lods[l].indices.size(); t += 3) {
+                glm::dvec3 p[3];
+                for (int k = 0; k < 3; ++k)
+                    p[k] = glm::dvec3(c.mesh.vertices[c.lods[l].vertices[c.lods[l].indices[t + size_t(k)]]].positionU);
+                area[l] += 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+            }
         for (uint32_t l = 0; l < kLodCount; ++l) {
             const LodError& e = c.lods[l].error;
             clump["lods"].push_back({{"vertices", c.lods[l].vertices.size()},
                                      {"triangles", c.lods[l].indices.size() / 3},
                                      {"motionModes", c.motion.lodModes[l]},
+                                     {"areaFraction", area[0] > 0.0 ? area[l] / area[0] : 0.0},
                                      {"maxModesPerVertex", c.motion.maxBlockRank(l)},
                                      // Per-vertex first-order transfer (mean and displacement gradient), no modes.
                                      {"appearanceModes", 0},

@@ -27,6 +27,8 @@ for c in j["clumps"]:
     assert 0 < wind["medianSeconds"]["down"] <= wind["p95Seconds"]["down"] < 100, (c["name"], wind)
     lods = c["lods"]
     assert len(lods) == 5 and all(lods[i]["triangles"] > lods[i + 1]["triangles"] for i in range(4)), c["name"]
+    # Area in the mean pose against LOD 0's: LOD 0 is itself; the coarsest LOD loses thin parts' tips.
+    assert lods[0]["areaFraction"] == 1.0 and 0.1 < lods[4]["areaFraction"] < 1.0, (c["name"], lods)
 # The far field's surface samples: the ci preset's 1024 per clump and rock, over a positive area,
 # with their coverage gains (5 sizes of 4 elevations, 4 bytes each): positive, and for rocks (closed
 # solids, whose independent splats leave holes) above 1 once they span pixels.
