@@ -235,20 +235,22 @@ int main(int argc, char** argv) {
     const Image truth = k == 1 ? truthFull : reduce(truthFull, k);
     const std::vector<float> truthPlant = plantShare(truthLod, k), approxPlant = plantShare(approxLod, 1);
 
-    // The region: where any of the LOD views shows the far field (the truth's: anywhere in the block).
+    // The region: where any of the LOD views shows the chosen LODs' colours (by default the far
+    // field's; the truth's: anywhere in the block).
     const int w = approx.width, h = approx.height;
     std::vector<uint8_t> region(size_t(w) * h, 0);
-    size_t farPixels = 0;
+    size_t shownPixels = 0; // of the approximation's LOD view
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            bool far = showsLodColour(approxLod, x, y, firstLod, lastLod);
+            const bool shown = showsLodColour(approxLod, x, y, firstLod, lastLod);
+            shownPixels += shown;
+            bool inRegion = shown;
             for (const Image& image : regionLods)
-                far = far || showsLodColour(image, x, y, firstLod, lastLod);
-            for (int dy = 0; dy < k && !far; ++dy)
-                for (int dx = 0; dx < k && !far; ++dx)
-                    far = showsLodColour(truthLod, k * x + dx, k * y + dy, firstLod, lastLod);
-            region[size_t(y) * w + x] = far;
-            farPixels += showsLodColour(approxLod, x, y, firstLod, lastLod);
+                inRegion = inRegion || showsLodColour(image, x, y, firstLod, lastLod);
+            for (int dy = 0; dy < k && !inRegion; ++dy)
+                for (int dx = 0; dx < k && !inRegion; ++dx)
+                    inRegion = showsLodColour(truthLod, k * x + dx, k * y + dy, firstLod, lastLod);
+            region[size_t(y) * w + x] = inRegion;
         }
     size_t regionPixels = 0;
     double meanTruth[3] = {0, 0, 0}, meanApprox[3] = {0, 0, 0};
@@ -275,10 +277,10 @@ int main(int argc, char** argv) {
                 }
             }
         }
-    if (farPixels < 50) {
+    if (shownPixels < 50) {
         std::fprintf(stderr,
                      "far_compare: LODs %d to %d (5: the far field) cover %zu pixels of %s: too few to compare\n",
-                     firstLod, lastLod, farPixels, argv[4]);
+                     firstLod, lastLod, shownPixels, argv[4]);
         return 1;
     }
     if (plantTruth == 0.0 || plantApprox == 0.0) {
@@ -303,7 +305,7 @@ int main(int argc, char** argv) {
     std::printf("far_compare: region %zu px (%s %zu px); mean linear RGB truth %.4f %.4f %.4f, approximation "
                 "%.4f %.4f %.4f (error %.2f%%, allowed %.2f%%); plant coverage truth %.3f, approximation %.3f "
                 "(ratio %.3f, allowed %.2f to %.2f); SSIM %.3f",
-                regionPixels, shown.c_str(), farPixels, meanTruth[0], meanTruth[1], meanTruth[2], meanApprox[0],
+                regionPixels, shown.c_str(), shownPixels, meanTruth[0], meanTruth[1], meanTruth[2], meanApprox[0],
                 meanApprox[1], meanApprox[2], 100.0 * colourError, 100.0 * maxColour, coverageTruth, coverageApprox,
                 coverageRatio, coverageLow, coverageHigh, s);
     if (referencePath)
