@@ -9,7 +9,8 @@
 #   sweep.sh [OUT] [COUNTS...]      scripts/bench-sweep.sh at 1920x1080 from 10 thousand to a
 #                                   million clumps (JSON per run and a Markdown table in OUT,
 #                                   default ./bench-sweep; the plot where python3 has matplotlib);
-#                                   --far-radius PX before the counts turns the far field on
+#                                   --far-radius PX before the counts sets the far field's
+#                                   radius (0: off; default bench's, 28 px)
 # The bundle is a folder and a .tar.gz beside it.
 #   scripts/bundle-bench.sh [--preset full|ci] [--build-dir DIR] [--out DIR] [--no-build]
 # Defaults: the full preset, build-ci (built first with scripts/build.sh unless --no-build),

@@ -20,7 +20,7 @@ for view in "${views[@]}"; do
   for kind in truth reference far meshes far-lod; do
     case "$kind" in
       truth) extra=(--lod0) ;; reference) extra=(--far-radius "$radius" --far-lod0) ;;
-      far) extra=(--far-radius "$radius") ;; meshes) extra=() ;;
+      far) extra=(--far-radius "$radius") ;; meshes) extra=(--far-radius 0) ;;
       far-lod) extra=(--far-radius "$radius" --debug-lod) ;;
     esac
     "$meadow" render "$scene" --preset "$preset" --size "$size" "${cam[@]}" "${extra[@]}" \

@@ -18,12 +18,12 @@ const char* const kFieldOptionsHelp =
     R"(  --far-radius PX       the far field: below this projected radius (px) a clump is drawn as
                         surface-sample splats instead of its last mesh LOD, with the same
                         crossfade as the LODs; a radius above a LOD's switch skips that LOD
-                        (default 0: off)
+                        (default 28 at the default --lod-tolerance, scaled with it; 0: off)
   --lod0                every clump at full detail (LOD 0), no far field: the reference the
                         levels of detail and the far field approximate
-  --far-lod0            with --far-radius: the clumps the far field would take are drawn as
-                        LOD 0 meshes instead, everything else as with the far field (the far
-                        field's own reference); --debug-lod shows them in the far field's colour
+  --far-lod0            the clumps the far field would take are drawn as LOD 0 meshes instead,
+                        everything else as with the far field (the far field's own reference);
+                        --debug-lod shows them in the far field's colour
   --lod-tolerance PX    the screen-space error at which each coarser LOD takes over: its RMS
                         distance from the full mesh, in pixels (default 0.3; 0.05 to 4). Larger
                         is faster and coarser: the switch radii scale with it
@@ -38,20 +38,26 @@ void addFieldOptions(CommandSpec& spec) {
 
 FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
     FieldOptions options;
-    options.farRadius = args.f32("--far-radius", 0.0f, 0.0f, 1000.0f);
-    options.lod0 = args.has("--lod0");
-    if (options.lod0 && options.farRadius > 0.0f)
-        throw Error("meadow " + args.command +
-                    ": --lod0 draws every clump at full detail, without a far field: "
-                    "leave out --far-radius");
-    options.farLod0 = args.has("--far-lod0");
-    if (options.farLod0 && !(options.farRadius > 0.0f))
-        throw Error("meadow " + args.command +
-                    ": --far-lod0 draws the far field's clumps as LOD 0 meshes: it needs --far-radius PX");
     options.lodTolerance = args.f32("--lod-tolerance", kDefaultLodTolerancePixels, 0.05f, 4.0f);
+    options.lod0 = args.has("--lod0");
     if (options.lod0 && args.has("--lod-tolerance"))
         throw Error("meadow " + args.command +
                     ": --lod0 draws every clump at full detail, so no LOD takes over: leave out --lod-tolerance");
+    float farRadius = args.f32("--far-radius", 0.0f, 0.0f, 1000.0f);
+    if (options.lod0 && farRadius > 0.0f)
+        throw Error("meadow " + args.command +
+                    ": --lod0 draws every clump at full detail, without a far field: "
+                    "leave out --far-radius");
+    // Left out: the default radius, which keeps its place among the LOD switches (field_content.h).
+    options.farRadius = args.has("--far-radius") || options.lod0 ? farRadius : defaultFarRadius(options.lodTolerance);
+    options.farLod0 = args.has("--far-lod0");
+    if (options.lod0 && options.farLod0)
+        throw Error("meadow " + args.command +
+                    ": --lod0 draws every clump at full detail, without a far field: leave out --far-lod0");
+    if (options.farLod0 && !(options.farRadius > 0.0f))
+        throw Error("meadow " + args.command +
+                    ": --far-lod0 draws the far field's clumps as LOD 0 meshes: it needs the far field, "
+                    "which --far-radius 0 turns off");
     return options;
 }
 

@@ -25,7 +25,7 @@ void addSceneOptions(CommandSpec& spec);
 extern const char* const kFieldOptionsHelp;
 void addFieldOptions(CommandSpec& spec);
 struct FieldOptions {
-    float farRadius = 0.0f; // px; 0: no far field
+    float farRadius = 0.0f; // px; 0: no far field (the command line's default: defaultFarRadius)
     bool lod0 = false;      // every clump at full detail: the reference the LODs and the far field approximate
     bool farLod0 = false;   // the far field's clumps as LOD 0 meshes: the far field's own reference
     float lodTolerance = kDefaultLodTolerancePixels; // px of RMS error where each LOD takes over

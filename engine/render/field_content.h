@@ -13,6 +13,16 @@ namespace meadow {
 // from the full mesh over simulated frames, in pixels, where it takes over.
 inline constexpr float kDefaultLodTolerancePixels = 0.3f;
 
+// The far field's projected radius when none is given (--far-radius), in pixels at the default
+// tolerance: below it a clump is drawn as surface-sample splats. At 0.3 px it lies between the
+// radii where LOD 2 and LOD 3 take over, so the far field replaces LODs 3 and 4, whose meshes have
+// lost half their area; measured as the radius whose picture is nearest LOD 0 at 1280x720
+// (docs/BENCHMARKS.md). It scales with the tolerance as the switch radii do, so it keeps that place.
+inline constexpr float kDefaultFarRadiusPixels = 28.0f;
+inline float defaultFarRadius(float lodTolerancePixels) {
+    return kDefaultFarRadiusPixels * lodTolerancePixels / kDefaultLodTolerancePixels;
+}
+
 // The library's terrain, wind direction, LOD choice and sky, as the field renderer draws them. The
 // switch radii put each LOD's error (RMS distance over simulated frames) at `lodTolerancePixels`
 // (> 0) for the clump whose error is largest for its size: they scale with it.

@@ -24,11 +24,13 @@
 # against LOD 0".)
 # The figures and why these bounds: docs/BENCHMARKS.md (The far field's look, measured again).
 #   far_field_views.sh MEADOW FAR_COMPARE SCENE OUTDIR [SIZE] [FAR_RADIUS] [MAX_COLOUR] [COVERAGE]
+# FAR_RADIUS "default" leaves --far-radius out: the far field as meadow draws it by default.
 # PRESET=full in the environment measures the full field instead (a benchmark, not a test: minutes).
 set -euo pipefail
 meadow="$1"; compare="$2"; scene="$3"; out="$4"; size="${5:-480x270}"; radius="${6:-7}"
 maxColour="${7:-0.11}"; coverage="${8:-0.9,1.1}"; preset="${PRESET:-ci}"
 mkdir -p "$out"
+far=(--far-radius "$radius"); [[ "$radius" == default ]] && far=()
 views=("default:" "low:-30,1.2,-30,0,0.4,0" "high:-22,16,-22,4,0,4")
 status=0
 for view in "${views[@]}"; do
@@ -38,18 +40,18 @@ for view in "${views[@]}"; do
     "$meadow" render "$scene" --preset "$preset" --size "$size" "${cam[@]}" --out "$out/$name-$1.png" "${@:2}" \
       2>"$out/$name-$1.log" || { cat "$out/$name-$1.log"; echo "far_field_views: $name-$1 failed"; exit 1; }
   }
-  render far --far-radius "$radius" --validation
-  render far-lod --far-radius "$radius" --debug-lod
-  render ref --far-radius "$radius" --far-lod0
-  render ref-lod --far-radius "$radius" --far-lod0 --debug-lod
+  render far "${far[@]}" --validation
+  render far-lod "${far[@]}" --debug-lod
+  render ref "${far[@]}" --far-lod0
+  render ref-lod "${far[@]}" --far-lod0 --debug-lod
   render truth --lod0
   render truth-lod --lod0 --debug-lod
-  render meshes
-  render meshes-lod --debug-lod
+  render meshes --far-radius 0
+  render meshes-lod --far-radius 0 --debug-lod
   grep -q "in the far field" "$out/$name-far.log"
   # The visibility buffer's ties resolve the same way whatever the threads do: the same bytes on
   # one lavapipe thread as on all of them.
-  LP_NUM_THREADS=1 render far-1thread --far-radius "$radius"
+  LP_NUM_THREADS=1 render far-1thread "${far[@]}"
   cmp "$out/$name-far.png" "$out/$name-far-1thread.png" || { echo "far_field_views: $name differs on one thread"; status=1; }
   echo -n "$name, against its reference: "
   "$compare" "$out/$name-ref.png" "$out/$name-ref-lod.png" "$out/$name-far.png" "$out/$name-far-lod.png" \

@@ -16,11 +16,17 @@ scene="$here/../../../data/scenes/irises.json"
 case_args() {
   case "$1" in
     field_afternoon)
-      # The default field (ci preset) in afternoon light: cull -> indirect draw -> tonemap.
+      # The default field (ci preset) in afternoon light: cull -> indirect draw -> far field's
+      # splats and resolve (at 160x90 nearly every clump is below the default 28 px) -> tonemap.
       # Reason for the tolerance: lavapipe is pinned to 128-bit vectors so results are stable,
       # but LLVM may pick other instructions for pow/exp on other CPUs; a few edge pixels of
       # thin blades may flip. A missing pass or a wrong barrier changes far more than 0.5%.
       args=(render "$scene" --preset ci --size 160x90)
+      threshold=0.04; percent=0.5 ;;
+    field_afternoon_meshes)
+      # The same frame without the far field (--far-radius 0): every clump as its LOD mesh, most
+      # of them LOD 3 and 4 at this size.
+      args=(render "$scene" --preset ci --size 160x90 --far-radius 0)
       threshold=0.04; percent=0.5 ;;
     field_morning_high)
       # Low sun, camera high above the field looking down: exercises culling with a steep
@@ -42,8 +48,9 @@ case_args() {
       args=(render "$scene" --preset ci --size 160x90 --time-of-day 10 --camera 0.3,0.45,-4,2,0.35,3)
       threshold=0.04; percent=0.8 ;;
     lod_colors)
-      # The LOD debug view: each clump in its level of detail's colour (red 0 .. violet 4).
-      args=(render "$scene" --preset ci --size 160x90 --debug-lod)
+      # The LOD debug view: each clump in its level of detail's colour (red 0 .. violet 4), without
+      # the far field (which --debug-lod shows in cyan: far.views covers it).
+      args=(render "$scene" --preset ci --size 160x90 --debug-lod --far-radius 0)
       threshold=0.04; percent=0.5 ;;
     lod_sheet)
       # One clump at each level of detail, and the differences (meadow sheet --lods), validated.
@@ -58,7 +65,7 @@ case_args() {
 }
 
 if [ "${1:-}" = "--list" ]; then
-  echo field_afternoon field_morning_high calm_noon windy_evening low_camera lod_colors lod_sheet motion_sheet
+  echo field_afternoon field_afternoon_meshes field_morning_high calm_noon windy_evening low_camera lod_colors lod_sheet motion_sheet
   exit 0
 fi
 

@@ -116,10 +116,15 @@ meadow_corpus_test(render.unknown_plant_file "glTF .*no_such_plant.glb: cannot o
   ${meadow} render "${corpus_dir}/scenes/unknown_plant_file.json" --preset ci --size 32x32 --out "${corpus_out}/render-no-plant.png")
 # The far field's options that contradict each other: refused before any work, no image written.
 meadow_corpus_test(render.far_lod0_without_far_field
-  "meadow render: --far-lod0 draws the far field's clumps as LOD 0 meshes: it needs --far-radius PX"
+  "meadow render: --far-lod0 draws the far field's clumps as LOD 0 meshes: it needs the far field, which --far-radius 0 turns off"
   --absent "${corpus_out}/render-far-lod0.png" --
-  ${meadow} render "${PROJECT_SOURCE_DIR}/data/scenes/irises.json" --preset ci --size 32x32 --far-lod0
+  ${meadow} render "${PROJECT_SOURCE_DIR}/data/scenes/irises.json" --preset ci --size 32x32 --far-lod0 --far-radius 0
   --out "${corpus_out}/render-far-lod0.png")
+meadow_corpus_test(render.lod0_with_far_lod0
+  "meadow render: --lod0 draws every clump at full detail, without a far field: leave out --far-lod0"
+  --absent "${corpus_out}/render-lod0-far-lod0.png" --
+  ${meadow} render "${PROJECT_SOURCE_DIR}/data/scenes/irises.json" --preset ci --size 32x32 --lod0 --far-lod0
+  --out "${corpus_out}/render-lod0-far-lod0.png")
 meadow_corpus_test(render.lod0_with_far_field
   "meadow render: --lod0 draws every clump at full detail, without a far field: leave out --far-radius"
   --absent "${corpus_out}/render-lod0-far.png" --
