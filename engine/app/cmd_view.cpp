@@ -432,6 +432,9 @@ void readFrameStats(Walkthrough& w, double wall) {
     w.hudStats.visibleInstances = fieldStats.visibleInstances;
     w.hudStats.testedInstances = fieldStats.testedInstances;
     w.hudStats.triangles = fieldStats.trianglesDrawn;
+    w.hudStats.farRadius = w.renderer.farField ? w.renderer.lodParams.farRadius : 0.0f;
+    w.hudStats.farInstances = fieldStats.farInstances;
+    w.hudStats.farSamples = fieldStats.farSamples;
     w.hudStats.instancesPerLod.assign(w.renderer.lodCount, 0);
     for (size_t m = 0; m < fieldStats.visiblePerMesh.size(); ++m)
         w.hudStats.instancesPerLod[m % w.renderer.lodCount] += fieldStats.visiblePerMesh[m];
@@ -443,8 +446,9 @@ void readFrameStats(Walkthrough& w, double wall) {
         std::string perPass;
         for (const PassTime& p : logged.gpu)
             perPass += " " + p.label + " " + std::to_string(p.milliseconds).substr(0, 5);
-        std::fprintf(stderr, "meadow: %.1f fps, GPU %.2f ms (%s ), %u of %u instances visible\n", logged.fps,
-                     logged.gpuTotalMs, perPass.c_str(), fieldStats.visibleInstances, fieldStats.testedInstances);
+        std::fprintf(stderr, "meadow: %.1f fps, GPU %.2f ms (%s ), %u of %u instances visible, %u in the far field\n",
+                     logged.fps, logged.gpuTotalMs, perPass.c_str(), fieldStats.visibleInstances,
+                     fieldStats.testedInstances, fieldStats.farInstances);
     }
 }
 

@@ -31,6 +31,11 @@ void statsSection(const HudStats& s) {
         ImGui::Text("LOD%zu %u", lod, s.instancesPerLod[lod]);
     }
     ImGui::Text("%.2f M triangles per frame", double(s.triangles) * 1e-6);
+    if (s.farRadius > 0.0f)
+        ImGui::Text("far field (below %.0f px): %u instances, %.2f M splats", s.farRadius, s.farInstances,
+                    double(s.farSamples) * 1e-6);
+    else
+        ImGui::TextUnformatted("far field off (--far-radius 0)");
 }
 
 void windSection(ViewControls& c) {

@@ -19,6 +19,9 @@ struct HudStats {
     double gpuTotalMs = 0.0;
     uint32_t visibleInstances = 0, testedInstances = 0;
     std::vector<uint32_t> instancesPerLod; // a crossfading instance counts in both of its LODs
+    float farRadius = 0.0f;                // px; 0: the far field is off (--far-radius 0)
+    uint32_t farInstances = 0;             // drawn as the far field's splats (a crossfading one counts)
+    uint64_t farSamples = 0;               // their samples splatted
     uint64_t triangles = 0;
     std::string device;
     uint32_t width = 0, height = 0;

@@ -124,6 +124,10 @@ for what in (
 ):
     check(what in log, f"the log says '{what}'")
 
+# The far field is on by default: the statistics line every 2 s counts the instances it drew.
+far_counts = [int(m.group(1)) for m in re.finditer(r"instances visible, (\d+) in the far field", log)]
+check(far_counts and max(far_counts) > 0, f"the stats lines count instances in the far field (got {far_counts})")
+
 if failures:
     print("FAIL:\n  " + "\n  ".join(failures))
     sys.exit(1)
