@@ -316,6 +316,7 @@ void openWalkthrough(Walkthrough& w, const Library& library, const std::vector<F
     w.hudStats.device = w.ctx.deviceName();
     w.hudStats.hasPath = w.opt.path.has_value();
     w.hudStats.canRecord = true;
+    w.hudStats.farRadius = w.renderer.farField ? w.renderer.lodParams.farRadius : 0.0f;
     w.hudStats.scripted = w.player.has_value();
     w.recorder.file = w.opt.recordFile;
     w.playing = play;
@@ -432,7 +433,6 @@ void readFrameStats(Walkthrough& w, double wall) {
     w.hudStats.visibleInstances = fieldStats.visibleInstances;
     w.hudStats.testedInstances = fieldStats.testedInstances;
     w.hudStats.triangles = fieldStats.trianglesDrawn;
-    w.hudStats.farRadius = w.renderer.farField ? w.renderer.lodParams.farRadius : 0.0f;
     w.hudStats.farInstances = fieldStats.farInstances;
     w.hudStats.farSamples = fieldStats.farSamples;
     w.hudStats.instancesPerLod.assign(w.renderer.lodCount, 0);
