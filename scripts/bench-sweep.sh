@@ -66,7 +66,7 @@ out, counts = sys.argv[1], [int(c) for c in sys.argv[2:]]
 runs = [json.load(open(os.path.join(out, f"bench-{n}.json"))) for n in counts]
 passes = ["animate", "cull", "light", "draw", "tonemap"]
 if any("farSplat" in r["gpuMs"] for r in runs):
-    passes[4:4] = ["farSplat", "farResolve"]
+    passes[4:4] = ["farSplat"]
 lines = [f"Device: {runs[0]['device']} ({runs[0]['vulkanDriver']}), {runs[0]['width']}x{runs[0]['height']}, "
          f"{runs[0]['frames']} frames per run, median.", "",
          "| clumps | frame ms | fps | " + " | ".join(f"{p} ms" for p in passes) +

@@ -1,12 +1,16 @@
 #version 460
-// Far field, resolve pass: every pixel where a far-field sample won (far_splat.comp) and lies
-// nearer than the meshes' depth takes its radiance in the HDR image, before tone mapping (so EXR
-// output has it too). The depth test is here, once per pixel, rather than per sample in the splat
-// pass: the same picture (far_splat.h, farWordShows), and no depth fetch in the splat pass's loop.
+// Far field, resolve pass, which is also the tone mapper when the far field is on: every pixel where
+// a far-field sample won (far_splat.comp) and lies nearer than the meshes' depth takes that sample's
+// radiance, written into the HDR image (so EXR output has it too); then the pixel is tone mapped
+// into the LDR image as tonemap.comp does (tonemap.h). The depth test is here, once per pixel,
+// rather than per sample in the splat pass: the same picture (far_splat.h, farWordShows), and no
+// depth fetch in the splat pass's loop. One pass instead of a resolve and a tone map: each pixel's
+// HDR value is read and written once (docs/BENCHMARKS.md).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
 #include "far_splat.h"
+#include "tonemap.h"
 
 layout(local_size_x = kFarResolveGroupSize, local_size_y = kFarResolveGroupSize) in;
 
@@ -14,6 +18,7 @@ MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer Visibility { uint64_t visibility[]; };
 layout(set = 0, binding = 2, rgba16f) uniform image2D hdrImage;
 layout(set = 0, binding = 3) uniform sampler2D meshDepth;
+layout(set = 0, binding = 4, rgba8) uniform writeonly image2D ldrImage;
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -21,8 +26,14 @@ void main() {
     if (p.x >= size.x || p.y >= size.y)
         return;
     uvec2 word = unpackUint2x32(visibility[uint(p.y) * uint(size.x) + uint(p.x)]);
-    if (!farWordShows(word.y, texelFetch(meshDepth, p, 0).r))
-        return; // a mesh (or the terrain) is as near or nearer
-    vec3 radiance = unpackRgb9e5(word.x);
-    imageStore(hdrImage, p, vec4(radiance, 1.0));
+    vec3 radiance;
+    if (farWordShows(word.y, texelFetch(meshDepth, p, 0).r)) {
+        // RGB9E5 converts to half floats exactly (9-bit mantissas, exponents from -24 to 15), so
+        // the LDR pixel is the HDR image's tone mapped, as without the far field.
+        radiance = unpackRgb9e5(word.x);
+        imageStore(hdrImage, p, vec4(radiance, 1.0));
+    } else {
+        radiance = imageLoad(hdrImage, p).rgb; // a mesh (or the terrain, or the sky) is as near or nearer
+    }
+    imageStore(ldrImage, p, tonemapRadiance(radiance, frame.skyZenith.w));
 }

@@ -5,7 +5,7 @@
 MEADOW_FRAME_BLOCK(0, 0)
 // How much light reaches the ground under and around the clumps (ground_map.frag), over the
 // field's rectangle (frame.groundMap); open ground outside it.
-layout(set = 0, binding = 3) uniform sampler2D groundMap;
+layout(set = 0, binding = 2) uniform sampler2D groundMap;
 
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inIrradiance;

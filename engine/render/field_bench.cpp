@@ -64,12 +64,12 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
             total += p.milliseconds;
             if (p.label == "light" && renderer.lightThisFrame)
                 lightMs.push_back(p.milliseconds);
-            if (p.label == "farSplat" || p.label == "farResolve")
+            if (p.label == "farSplat")
                 far += p.milliseconds;
         }
         passMs["total"].push_back(total);
         if (renderer.farField)
-            passMs["far"].push_back(far); // the far field's two passes together
+            passMs["far"].push_back(far); // the splat pass (its resolve is the tone map pass)
     }
     FieldStats stats = readFieldStats(renderer);
     j["clumps"] = renderer.instanceCount;

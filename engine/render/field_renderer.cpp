@@ -374,6 +374,8 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
     std::vector<float> sh(27);
     for (size_t i = 0; i < sh.size(); ++i)
         sh[i] = (1.0f - t) * a.sh[i] + t * b.sh[i];
+    for (size_t i = 0; i < 9; ++i)
+        f.skySh[i] = glm::vec4(sh[3 * i], sh[3 * i + 1], sh[3 * i + 2], 0.0f);
     const float irradiance = std::max(upwardIrradianceLuminance(sh), 0.02f * r.brightestIrradiance);
     // White paper lying on the ground at 0.6 of the tone curve's linear range.
     const float exposure = irradiance > 0.0f ? 0.6f * float(M_PI) / irradiance : 1.0f;
@@ -562,7 +564,7 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
                                  r.lodCount * sizeof(gpu::GpuDrawIndexedCommand));
 
     bindPipeline(ctx, cmd, r.ground,
-                 {r.frameUniforms, r.terrainVertices, r.skyData,
+                 {r.frameUniforms, r.terrainVertices,
                   Binding(r.groundLight.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.sampler)});
     vkCmdBindIndexBuffer(cmd, r.terrainIndices.buffer, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cmd, r.terrainIndexCount, 1, 0, 0, 0);
@@ -572,10 +574,10 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
     vkCmdEndRendering(cmd);
 }
 
-// The far field (far_splat.h): the visibility buffer emptied, every far instance's samples splatted
-// into it, the winners nearer than the meshes' depth written into the HDR image (left in GENERAL
-// layout).
-void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t, GpuTimer* timer) {
+// The far field (far_splat.h): the visibility buffer emptied and every far instance's samples
+// splatted into it. The winners are resolved against the meshes' depth by the tone map pass
+// (far_resolve.comp), which reads the depth in SHADER_READ_ONLY layout and the HDR image in GENERAL.
+void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
     imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kDepthAttachment,
                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, access::kComputeSampledRead,
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -590,29 +592,31 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
                   Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), t.farVisibility});
     pushConstants(ctx, cmd, r.farSplat, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdDispatchIndirect(cmd, r.farDispatch.buffer, 0);
-    markPass(timer, cmd, "farSplat");
-    barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite);
-    bindPipeline(ctx, cmd, r.farResolve,
-                 {r.frameUniforms, t.farVisibility, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL),
-                  Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler)});
-    dispatchCovering(cmd, r.farResolve, t.extent.width, t.extent.height);
 }
 
-// HDR -> LDR: the draw's image (and the far field's), read in GENERAL layout by a compute pass
-// that writes the LDR one.
+// HDR -> LDR: the draw's image, read in GENERAL layout by a compute pass that writes the LDR one.
+// With the far field, that pass is the resolve (far_resolve.comp): it first writes the far field's
+// winners that lie nearer than the meshes into the HDR image.
 void recordTonemapPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
     if (farRuns(r))
-        imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite, VK_IMAGE_LAYOUT_GENERAL,
-                     access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
+        barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite); // the splat pass's atomics
     else
         imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
     imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite | access::kTransferRead,
                  VK_IMAGE_LAYOUT_UNDEFINED, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL);
-    bindPipeline(
-        ctx, cmd, r.tonemap,
-        {r.frameUniforms, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL), Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
-    dispatchCovering(cmd, r.tonemap, t.extent.width, t.extent.height);
+    if (farRuns(r)) {
+        bindPipeline(ctx, cmd, r.farResolve,
+                     {r.frameUniforms, t.farVisibility, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL),
+                      Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler),
+                      Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
+        dispatchCovering(cmd, r.farResolve, t.extent.width, t.extent.height);
+    } else {
+        bindPipeline(ctx, cmd, r.tonemap,
+                     {r.frameUniforms, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL),
+                      Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
+        dispatchCovering(cmd, r.tonemap, t.extent.width, t.extent.height);
+    }
 }
 
 // The cull's statistics and the draws' instance counts, copied where the host reads them
@@ -642,11 +646,11 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     recordDrawPass(ctx, r, cmd, t);
     markPass(timer, cmd, "draw");
     if (farRuns(r)) {
-        recordFarPass(ctx, r, cmd, t, timer);
-        markPass(timer, cmd, "farResolve");
+        recordFarPass(ctx, r, cmd, t);
+        markPass(timer, cmd, "farSplat");
     }
     recordTonemapPass(ctx, r, cmd, t);
-    markPass(timer, cmd, "tonemap");
+    markPass(timer, cmd, "tonemap"); // with the far field, the resolve pass (far_resolve.comp)
     recordStatsReadback(r, cmd);
 }
 

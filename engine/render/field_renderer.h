@@ -6,11 +6,12 @@
 //   -> cull.comp (frustum, LOD, compaction into per-(clump, LOD) draws)
 //   -> light.comp (only when the sky changed: every clump vertex's transfer onto the sky's SH)
 //   -> sky backdrop, terrain, one multi-draw-indirect of the clumps
-//   -> far_splat.comp, far_resolve.comp (with a far field: far instances as surface samples)
-//   -> tonemap.comp.
+//   -> far_splat.comp (with a far field: far instances as surface samples)
+//   -> tonemap.comp, or with a far field far_resolve.comp (the splats' winners resolved against the
+//      meshes' depth, then the tone map, in one pass).
 //
-// GPU timestamps bracket "animate", "cull", "light", "draw", "farSplat" and "farResolve" (with a far
-// field: the visibility buffer's fill and the splat pass, then the resolve) and "tonemap".
+// GPU timestamps bracket "animate", "cull", "light", "draw", "farSplat" (with a far field: the
+// visibility buffer's fill and the splat pass) and "tonemap" (with a far field, the resolve pass).
 #pragma once
 
 #include <array>

@@ -34,7 +34,7 @@ static_assert(offsetof(GpuFrame, motion) == 416);
 static_assert(offsetof(GpuFrame, skyFrames) == 432);
 static_assert(offsetof(GpuFrame, skyBlend) == 448);
 static_assert(offsetof(GpuFrame, groundMap) == 464);
-static_assert(sizeof(GpuFrame) == 480);
+static_assert(sizeof(GpuFrame) == 624);
 
 static_assert(offsetof(GpuClump, motion) == 0);
 static_assert(offsetof(GpuClump, graph) == 16);

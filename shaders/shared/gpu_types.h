@@ -89,6 +89,9 @@ struct GpuFrame {
     uvec4 skyFrames; // x first frame, y second frame, zw unused
     vec4 skyBlend;   // x weight of the second frame, y azimuth of the simulation wind (mirror plane), zw unused
     vec4 groundMap;  // the ground light map's rectangle: x, y its lowest world x and z, z, w 1 / its size in x, z
+    // The two sky frames' SH coefficients of order 3 blended at skyBlend.x (rgb; w unused), for the
+    // terrain's vertex light: uniform reads instead of 54 gathers from the sky buffer per vertex.
+    vec4 skySh[9];
 };
 
 // One plant instance (storage buffer, read by cull and the vertex shader).

@@ -41,11 +41,12 @@ TEST(SpirvReflect, FarPassesLayout) {
     EXPECT_EQ(resolve.localSize[0], gpu::kFarResolveGroupSize);
     EXPECT_EQ(resolve.localSize[1], gpu::kFarResolveGroupSize);
     EXPECT_FALSE(resolve.localSizeXSpecialized);
-    // Frame, visibility buffer, HDR image, the meshes' depth.
-    ASSERT_EQ(resolve.bindings.size(), 4u);
+    // Frame, visibility buffer, HDR image, the meshes' depth, and the LDR image it tone maps into.
+    ASSERT_EQ(resolve.bindings.size(), 5u);
     EXPECT_EQ(resolve.bindings.at(1), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     EXPECT_EQ(resolve.bindings.at(2), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
     EXPECT_EQ(resolve.bindings.at(3), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    EXPECT_EQ(resolve.bindings.at(4), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
 }
 
 // The ground light map's pass: a thread per texel, its lists and the vertex light read as texel
