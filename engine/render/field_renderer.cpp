@@ -16,10 +16,12 @@
 #include "render/cpu_driver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/packing.hpp>
+#include <span>
 
 namespace meadow {
 
@@ -30,7 +32,7 @@ constexpr VkFormat kGroundLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 // Luminance of the irradiance on an upward-facing surface from RGB sky SH of order 3: only the
 // m = 0 terms of bands 0 and 1 and 2 contribute at +y (sh.h's basis).
-float upwardIrradianceLuminance(const std::vector<float>& sh) {
+float upwardIrradianceLuminance(std::span<const float> sh) {
     const double y00 = 0.282095, y10 = 0.488603, y20 = 0.315392 * 2.0;
     double e[3];
     for (int c = 0; c < 3; ++c)
@@ -371,7 +373,7 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
     const glm::vec3 sun = glm::mix(a.sunDirection, b.sunDirection, t);
     f.sunDirection = glm::vec4(glm::length(sun) > 1e-6f ? glm::normalize(sun) : glm::vec3(0, 1, 0), 0.0f);
     f.sunColor = glm::vec4(glm::mix(a.sunRadiance, b.sunRadiance, t), float(sky::kSunAngularRadius));
-    std::vector<float> sh(27);
+    std::array<float, 27> sh; // on the stack: this runs every frame
     for (size_t i = 0; i < sh.size(); ++i)
         sh[i] = (1.0f - t) * a.sh[i] + t * b.sh[i];
     for (size_t i = 0; i < 9; ++i)
@@ -598,20 +600,19 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
 // With the far field, that pass is the resolve (far_resolve.comp): it first writes the far field's
 // winners that lie nearer than the meshes into the HDR image.
 void recordTonemapPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
-    if (farRuns(r))
-        barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite); // the splat pass's atomics
-    else
-        imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
-                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
     imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite | access::kTransferRead,
                  VK_IMAGE_LAYOUT_UNDEFINED, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL);
     if (farRuns(r)) {
+        // The HDR image is in GENERAL since the far pass; wait for the splat pass's atomics.
+        barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite);
         bindPipeline(ctx, cmd, r.farResolve,
                      {r.frameUniforms, t.farVisibility, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL),
                       Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler),
                       Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
         dispatchCovering(cmd, r.farResolve, t.extent.width, t.extent.height);
     } else {
+        imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);
         bindPipeline(ctx, cmd, r.tonemap,
                      {r.frameUniforms, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL),
                       Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
