@@ -23,8 +23,8 @@ FieldScenery fieldScenery(const Library& library, float lodTolerancePixels) {
     // A sphere of radius R covering r pixels shows an error e at r e / R pixels: LOD i + 1 may
     // take over below r = tolerance R / e_(i+1), for the clump whose error is largest for its size.
     // 0.3 px of RMS error by default: at 1 px LOD 4's thinner silhouettes (its Hausdorff distance is
-    // 5-10x the RMS) showed as a sparser field from ~10 m on, and LODs 2-3 lose area, so the field
-    // darkens where they are drawn (docs/BENCHMARKS.md).
+    // 5-10x the RMS) showed as a sparser field from ~10 m on, and LODs 2-3 lose some area (15-40 %
+    // with the simplifier's area term), so the field darkens where they are drawn (docs/BENCHMARKS.md).
     std::vector<float> radius(library.clumps.size(), 0.0f);
     for (const gpu::GpuInstance& inst : library.field.clumpInstances)
         radius[inst.mesh] = std::max(radius[inst.mesh], inst.boundingRadius);

@@ -15,11 +15,11 @@ inline constexpr float kDefaultLodTolerancePixels = 0.3f;
 
 // The far field's projected radius when none is given (--far-radius), in pixels at the default
 // tolerance: below it a clump is drawn as surface-sample splats. In the full preset's library at
-// 0.3 px it lies between the radii where LOD 2 and LOD 3 take over, so the far field replaces
-// LODs 3 and 4, whose meshes have lost half their area (in the ci preset's coarser LODs, between
-// LOD 1's and LOD 2's); measured as the radius whose picture is nearest LOD 0 at 1280x720
-// (docs/BENCHMARKS.md). It scales with the tolerance as the switch radii do, so it keeps its place
-// among them.
+// 0.3 px it lies just below the radius where LOD 3 would take over (33 px), within that switch's
+// crossfade band, so LOD 2 hands over to the far field, which replaces LODs 3 and 4, the meshes
+// that keep the least of LOD 0's area (in the ci preset's coarser LODs it replaces LODs 2 to 4);
+// measured as the radius whose picture is nearest LOD 0 at 1280x720 (docs/BENCHMARKS.md). It
+// scales with the tolerance as the switch radii do, so it keeps its place among them.
 inline constexpr float kDefaultFarRadiusPixels = 28.0f;
 inline float defaultFarRadius(float lodTolerancePixels) {
     return kDefaultFarRadiusPixels * lodTolerancePixels / kDefaultLodTolerancePixels;

@@ -72,6 +72,12 @@ struct SimplifyOptions {
     bool separateGroups = true;  // never collapse across collapse groups (see SimplifyInput)
     float minNormalDot = 0.2f;   // a collapse may turn a triangle's normal by at most acos(this)
     bool allowFallback = true;   // see SimplifyStage
+    // A collapse that changes the surface's area by dA (m^2) costs areaWeight x dA^2 (m^4, the
+    // quadric's unit) on top of its quadric error. Without it a blade or petal loses its tip at no
+    // cost: its border vertex slides along the outline, on the boundary planes. At 300 the iris
+    // clumps' LODs 1-3 keep 97, 84 and 60 % of LOD 0's area instead of 91, 75 and 49 %, and their
+    // RMS distance over the motion is lower too (docs/BENCHMARKS.md, "LODs that keep their area").
+    float areaWeight = 300.0f;
 };
 
 // How far the simplifier had to go to meet a target. The constrained stage keeps every rule

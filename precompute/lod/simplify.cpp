@@ -126,6 +126,7 @@ void validateOptions(const SimplifyOptions& options) {
     check(options.uvWeight, "uvWeight", 0.0f, 1e6f);
     check(options.boundaryWeight, "boundaryWeight", 0.0f, 1e6f);
     check(options.minNormalDot, "minNormalDot", -1.0f, 0.99f);
+    check(options.areaWeight, "areaWeight", 0.0f, 1e9f);
 }
 
 void eraseValue(std::vector<uint32_t>& list, uint32_t value) {
@@ -188,7 +189,9 @@ struct MeshSimplifier::State {
     bool mapWedges(uint32_t p, uint32_t r);
     uint32_t edgeTriangleCount(uint32_t p, uint32_t r) const;
     bool isValid(uint32_t p, uint32_t r);
-    double cost(uint32_t r);
+    double quadricCost(uint32_t r);
+    double areaChange(uint32_t p, uint32_t r) const;
+    double cost(uint32_t p, uint32_t r);
     void updateCandidate(uint32_t p);
     void rescan();
     void collapse(uint32_t p, uint32_t r);
@@ -418,7 +421,7 @@ bool MeshSimplifier::State::mapWedges(uint32_t p, uint32_t r) {
     return !wedgeMap.empty();
 }
 
-double MeshSimplifier::State::cost(uint32_t r) {
+double MeshSimplifier::State::quadricCost(uint32_t r) {
     double total = 0.0;
     for (const auto& [w, target] : wedgeMap)
         total += evaluateQuadric(quadric(w), point[r], attributesOf(target), attributeCount);
@@ -426,6 +429,38 @@ double MeshSimplifier::State::cost(uint32_t r) {
         if (!vertexTriangles[v].empty())
             total += evaluateQuadric(quadric(v), point[r], attributesOf(v), attributeCount);
     return total;
+}
+
+// The mesh's surface area after moving p onto r, less before: the triangles on edge pr vanish, the
+// others of p's stretch or shrink.
+double MeshSimplifier::State::areaChange(uint32_t p, uint32_t r) const {
+    double change = 0.0;
+    for (const auto& [w, target] : wedgeMap) {
+        (void)target;
+        for (uint32_t t : vertexTriangles[w]) {
+            const glm::dvec3 a = point[positionAt(t, 0)], b = point[positionAt(t, 1)], c = point[positionAt(t, 2)];
+            const double before = 0.5 * glm::length(glm::cross(b - a, c - a));
+            if (hasPosition(t, r)) {
+                change -= before;
+                continue;
+            }
+            std::array<glm::dvec3, 3> moved{a, b, c};
+            for (int k = 0; k < 3; ++k)
+                if (positionAt(t, k) == p)
+                    moved[k] = point[r];
+            change += 0.5 * glm::length(glm::cross(moved[1] - moved[0], moved[2] - moved[0])) - before;
+        }
+    }
+    return change;
+}
+
+// The quadric's error plus the area term (SimplifyOptions::areaWeight). Expects wedgeMap for (p, r).
+double MeshSimplifier::State::cost(uint32_t p, uint32_t r) {
+    const double total = quadricCost(r);
+    if (options.areaWeight <= 0.0f)
+        return total;
+    const double change = areaChange(p, r);
+    return total + double(options.areaWeight) * change * change;
 }
 
 // The topological and geometric rules of the file comment. Expects wedgeMap for (p, r).
@@ -537,7 +572,7 @@ void MeshSimplifier::State::updateCandidate(uint32_t p) {
             continue;
         if (!mapWedges(p, r))
             continue;
-        options.emplace_back(cost(r), r);
+        options.emplace_back(cost(p, r), r);
     }
     std::sort(options.begin(), options.end());
     for (const auto& [c, r] : options) {
@@ -562,7 +597,7 @@ void MeshSimplifier::State::collapse(uint32_t p, uint32_t r) {
     for (uint32_t v : wedges[r])
         if (!vertexTriangles[v].empty())
             area += quadricArea(quadric(v));
-    const double c = cost(r);
+    const double c = quadricCost(r);
     if (area > 0.0)
         maxError = std::max(maxError, std::sqrt(c / area));
 
@@ -719,7 +754,7 @@ SimplifiedMesh MeshSimplifier::simplifyTo(uint32_t targetTriangles) {
         const uint32_t p = top.position, r = top.target;
         if (top.version != s.version[p] || !s.alive[p] || !s.alive[r])
             continue;
-        if (!s.mapWedges(p, r) || !s.isValid(p, r) || s.cost(r) != top.cost) {
+        if (!s.mapWedges(p, r) || !s.isValid(p, r) || s.cost(p, r) != top.cost) {
             s.updateCandidate(p);
             continue;
         }
