@@ -19,9 +19,12 @@
 // Every collapse must also keep the mesh a manifold (the link condition, Dey et al. 1999), leave
 // no vertex without triangles, create no duplicate triangle, and turn no remaining triangle by
 // more than acos(minNormalDot) nor against the original surface normal at its corners (no flips,
-// no folds of two-sided sheets). Collapses are ordered by cost in a priority queue with lazy
-// invalidation: each position holds one candidate (its cheapest valid collapse) and a version;
-// a collapse re-evaluates the positions around the kept one.
+// no folds of two-sided sheets). A collapse's cost is its quadric error plus the square of the
+// surface area it changes (SimplifyOptions::areaWeight): on the boundary planes a border position
+// slides along its outline at no cost, which would shorten every blade and petal by its tip.
+// Collapses are ordered by cost in a priority queue with lazy invalidation: each position holds
+// one candidate (its cheapest valid collapse) and a version; a collapse re-evaluates the positions
+// around the kept one.
 #include "lod/attribute_quadric.h"
 #include "lod/lod.h"
 
