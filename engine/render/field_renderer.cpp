@@ -29,6 +29,9 @@ namespace {
 
 constexpr double kMotionRate = 30.0; // motion frames per second (the simulation's frame rate)
 constexpr VkFormat kGroundLightFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+// The blended sky backdrop: half floats, as the HDR image it is drawn into (filterable and storable on
+// every Vulkan device).
+constexpr VkFormat kSkyImageFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 // Luminance of the irradiance on an upward-facing surface from RGB sky SH of order 3: only the
 // m = 0 terms of bands 0 and 1 and 2 contribute at +y (sh.h's basis).
@@ -131,6 +134,7 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     skyDesc.depthWrite = false; // at infinite depth (0): drawn where the depth is still the clear value
     skyDesc.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
     r.sky = createGraphicsPipeline(ctx, skyDesc);
+    r.skyBlend = createComputePipeline(ctx, "sky_blend.comp");
     r.ground =
         createGraphicsPipeline(ctx, GraphicsPipelineDesc{"ground.vert", "ground.frag", kHdrFormat, kDepthFormat});
     GraphicsPipelineDesc instanceDesc{"instance.vert", "instance.frag", kHdrFormat, kDepthFormat};
@@ -169,10 +173,10 @@ void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size
         p.motionGraph.size() * sizeof(uint32_t) + p.lightVec4s * 16 +
         skyFrameFloats(day) * day.frames.size() * sizeof(float) +
         2 * p.draws.size() * sizeof(gpu::GpuDrawIndexedCommand) + uint64_t(atlas.width) * atlas.height * 4 +
-        uint64_t(mapSize.width) * mapSize.height * 8 + scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex) +
-        scenery.terrain.indices.size() * sizeof(uint32_t) + p.farSamples.size() * sizeof(gpu::GpuFarSample) +
-        uint64_t(instanceCount) * 8 + sizeof(gpu::GpuFarDispatch) + ground.texelStart.size() * sizeof(uint32_t) +
-        ground.entries.size() * sizeof(glm::uvec2);
+        uint64_t(mapSize.width) * mapSize.height * 8 + uint64_t(day.imageWidth) * day.imageHeight * 8 +
+        scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex) + scenery.terrain.indices.size() * sizeof(uint32_t) +
+        p.farSamples.size() * sizeof(gpu::GpuFarSample) + uint64_t(instanceCount) * 8 + sizeof(gpu::GpuFarDispatch) +
+        ground.texelStart.size() * sizeof(uint32_t) + ground.entries.size() * sizeof(glm::uvec2);
     checkFieldMemory(ctx, neededBytes,
                      "the field (" + std::to_string(instanceCount) + " instances of " + std::to_string(clumpCount) +
                          " meshes)");
@@ -251,6 +255,10 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     r.sampler = createLinearSampler(ctx);
     r.atlasSampler = createLinearSampler(ctx, atlasMaxLod(atlas.width));
     r.pointSampler = createNearestSampler(ctx);
+    r.skyImage =
+        createImage2D(ctx, {scenery.sky.imageWidth, scenery.sky.imageHeight}, kSkyImageFormat,
+                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    r.skySampler = createPanoramaSampler(ctx);
 
     deviceBuffer(r.terrainVertices, scenery.terrain.vertices.data(),
                  scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex));
@@ -301,8 +309,8 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
 } // namespace
 
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
-    for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.ground, &r.instance, &r.groundMap,
-                        &r.farSplat, &r.farResolve})
+    for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.skyBlend, &r.ground, &r.instance,
+                        &r.groundMap, &r.farSplat, &r.farResolve})
         destroyPipeline(ctx, *p);
     for (VkBufferView* view : {&r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.vertexLightTexels,
                                &r.groundTexelStartTexels, &r.groundEntryTexels})
@@ -318,6 +326,7 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     destroyImage(ctx, r.groundLight);
+    destroyImage(ctx, r.skyImage);
     if (r.cpuDriver)
         destroyCpuDriver(ctx, *r.cpuDriver);
     if (r.sampler)
@@ -326,6 +335,8 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
         vkDestroySampler(ctx.device, r.atlasSampler, nullptr);
     if (r.pointSampler)
         vkDestroySampler(ctx.device, r.pointSampler, nullptr);
+    if (r.skySampler)
+        vkDestroySampler(ctx.device, r.skySampler, nullptr);
     r = FieldRenderer{};
 }
 
@@ -521,6 +532,18 @@ void recordGroundLightMap(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
                  access::kFragmentShaderRead, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
+// This frame's sky backdrop: the two sky frames around the hour blended into the sky image
+// (sky_blend.comp, a thread per texel), left ready for sky.frag. The previous frame's sky draw read
+// it; every texel is written again, so it starts from UNDEFINED.
+void recordSkyBlend(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
+    imageBarrier(cmd, r.skyImage.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kFragmentShaderRead,
+                 VK_IMAGE_LAYOUT_UNDEFINED, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL);
+    bindPipeline(ctx, cmd, r.skyBlend, {r.frameUniforms, r.skyData, Binding(r.skyImage.view, VK_IMAGE_LAYOUT_GENERAL)});
+    dispatchCovering(cmd, r.skyBlend, r.skyImage.extent.width, r.skyImage.extent.height);
+    imageBarrier(cmd, r.skyImage.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL,
+                 access::kFragmentShaderRead, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
 // The HDR image and depth: near to far, so that depth testing rejects as much as it can before
 // shading, the clumps LOD by LOD (LOD 0 is nearest; buckets are clump-major, so LOD l's are every
 // lodCount-th command), then the terrain, then the sky where nothing else was drawn.
@@ -571,7 +594,8 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
     vkCmdBindIndexBuffer(cmd, r.terrainIndices.buffer, 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cmd, r.terrainIndexCount, 1, 0, 0, 0);
 
-    bindPipeline(ctx, cmd, r.sky, {r.frameUniforms, r.skyData});
+    bindPipeline(ctx, cmd, r.sky,
+                 {r.frameUniforms, Binding(r.skyImage.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.skySampler)});
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
 }
@@ -644,6 +668,8 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     recordLightPass(ctx, r, cmd);
     recordGroundLightMap(ctx, r, cmd);
     markPass(timer, cmd, "light");
+    recordSkyBlend(ctx, r, cmd);
+    markPass(timer, cmd, "sky");
     recordDrawPass(ctx, r, cmd, t);
     markPass(timer, cmd, "draw");
     if (farRuns(r)) {
@@ -674,17 +700,30 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     return out;
 }
 
-std::vector<glm::vec3> readGroundLightMap(Context& ctx, const FieldRenderer& r) {
+namespace {
+
+// The RGB of a half-float RGBA image that the fragment shaders read.
+std::vector<glm::vec3> readHalfRgb(Context& ctx, const Image& image) {
     const std::vector<uint8_t> bytes =
-        readImageBytes(ctx, r.groundLight, VK_IMAGE_ASPECT_COLOR_BIT, 8, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+        readImageBytes(ctx, image, VK_IMAGE_ASPECT_COLOR_BIT, 8, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                        access::kFragmentShaderRead);
     std::vector<uint16_t> halves(bytes.size() / 2);
     std::memcpy(halves.data(), bytes.data(), bytes.size());
-    std::vector<glm::vec3> map(halves.size() / 4);
-    for (size_t i = 0; i < map.size(); ++i)
+    std::vector<glm::vec3> rgb(halves.size() / 4);
+    for (size_t i = 0; i < rgb.size(); ++i)
         for (int c = 0; c < 3; ++c)
-            map[i][c] = glm::unpackHalf1x16(halves[4 * i + c]);
-    return map;
+            rgb[i][c] = glm::unpackHalf1x16(halves[4 * i + c]);
+    return rgb;
+}
+
+} // namespace
+
+std::vector<glm::vec3> readGroundLightMap(Context& ctx, const FieldRenderer& r) {
+    return readHalfRgb(ctx, r.groundLight);
+}
+
+std::vector<glm::vec3> readSkyImage(Context& ctx, const FieldRenderer& r) {
+    return readHalfRgb(ctx, r.skyImage);
 }
 
 } // namespace meadow

@@ -5,12 +5,13 @@
 //   reset counters -> animate.comp (motion-graph steps at the wind level of each instance)
 //   -> cull.comp (frustum, LOD, compaction into per-(clump, LOD) draws)
 //   -> light.comp (only when the sky changed: every clump vertex's transfer onto the sky's SH)
-//   -> sky backdrop, terrain, one multi-draw-indirect of the clumps
+//   -> sky_blend.comp (this frame's sky backdrop: the two sky frames around the hour blended)
+//   -> one multi-draw-indirect of the clumps, the terrain, the sky backdrop
 //   -> far_splat.comp (with a far field: far instances as surface samples)
 //   -> tonemap.comp, or with a far field far_resolve.comp (the splats' winners resolved against the
 //      meshes' depth, then the tone map, in one pass).
 //
-// GPU timestamps bracket "animate", "cull", "light", "draw", "farSplat" (with a far field: the
+// GPU timestamps bracket "animate", "cull", "light", "sky", "draw", "farSplat" (with a far field: the
 // visibility buffer's fill and the splat pass) and "tonemap" (with a far field, the resolve pass).
 #pragma once
 
@@ -126,6 +127,7 @@ struct FieldRenderer {
     Pipeline light;
     Pipeline tonemap;
     Pipeline sky;
+    Pipeline skyBlend;
     Pipeline ground;
     Pipeline instance;
     Pipeline groundMap;
@@ -165,6 +167,10 @@ struct FieldRenderer {
     VkSampler sampler = VK_NULL_HANDLE;
     VkSampler atlasSampler = VK_NULL_HANDLE; // trilinear, stopping at the mip level whose parts stay apart
     VkSampler pointSampler = VK_NULL_HANDLE; // the depth, read by the splat pass
+    // This frame's sky backdrop (sky_blend.comp): the two sky frames around the hour blended, half
+    // floats, the sky's lat-long size; sky.frag reads it bilinear, wrapping around in azimuth.
+    Image skyImage;
+    VkSampler skySampler = VK_NULL_HANDLE;
 
     // The field's ground light map (render/ground_light_map.h): the share of open-ground light
     // reaching each point of the ground, multiplied over every instance's grid; made again by
@@ -254,5 +260,9 @@ FieldStats readFieldStats(const FieldRenderer& renderer);
 // The ground light map as the last light pass left it: RGB per texel, row by row (for tests and
 // tools; waits for the device).
 std::vector<glm::vec3> readGroundLightMap(Context& context, const FieldRenderer& renderer);
+
+// The sky backdrop the last frame drew (sky_blend.comp): RGB per texel of the sky's lat-long
+// image, row by row (for tests; waits for the device).
+std::vector<glm::vec3> readSkyImage(Context& context, const FieldRenderer& renderer);
 
 } // namespace meadow

@@ -315,6 +315,19 @@ VkSampler createNearestSampler(Context& ctx) {
     return sampler;
 }
 
+VkSampler createPanoramaSampler(Context& ctx) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = VK_FILTER_LINEAR;
+    info.minFilter = VK_FILTER_LINEAR;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.maxLod = 0.0f;
+    VkSampler sampler;
+    VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));
+    return sampler;
+}
+
 void readbackBuffer(Context& ctx, const Buffer& source, void* data, VkDeviceSize size, VkDeviceSize sourceOffset) {
     if (size == 0)
         return;

@@ -109,6 +109,9 @@ Image createTexture(Context& context, VkExtent2D extent, VkFormat format, const 
 VkSampler createLinearSampler(Context& context, float maxLod = VK_LOD_CLAMP_NONE);
 // Point sampling, for images read texel by texel (texelFetch), such as depth.
 VkSampler createNearestSampler(Context& context);
+// A bilinear sampler for a lat-long panorama (one mip level): wraps around in u (azimuth), clamps
+// to the edge in v (the poles).
+VkSampler createPanoramaSampler(Context& context);
 
 // Copies `size` bytes of a buffer back to host memory and waits.
 void readbackBuffer(Context& context, const Buffer& source, void* data, VkDeviceSize size,

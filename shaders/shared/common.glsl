@@ -50,35 +50,4 @@ const uint kClumpLodShift = 8u;               // bits 8-10: the LOD the debug vi
             result += band[i] * y[i] * sky(i);                                                       \
     }
 
-// The sky backdrop at a world direction: the blended lat-long images of the two sky frames
-// (light/latlong.h's layout), bilinear, plus the sun's disk. `skyData` is the SkyData buffer.
-#define MEADOW_SKY_RADIANCE(result, skyData, f, dirIn)                                                \
-    {                                                                                                 \
-        vec3 dir = (dirIn);                                                                           \
-        uint width = (f).skyFrames.z, height = (f).skyFrames.w;                                       \
-        uint stride = kSkyFrameHeaderFloats + width * height * 3u;                                    \
-        float u = atan(dir.x, dir.z) / (2.0 * kPi);                                                   \
-        u = u < 0.0 ? u + 1.0 : u;                                                                    \
-        float v = acos(clamp(dir.y, -1.0, 1.0)) / kPi;                                                \
-        float px = u * float(width) - 0.5, py = clamp(v * float(height) - 0.5, 0.0, float(height - 1u)); \
-        float fx = floor(px), fy = floor(py);                                                         \
-        float ax = px - fx, ay = py - fy;                                                             \
-        uint x0 = uint(int(fx) + int(width)) % width, x1 = (x0 + 1u) % width;                         \
-        uint y0 = uint(fy), y1 = min(y0 + 1u, height - 1u);                                           \
-        result = vec3(0.0);                                                                           \
-        for (uint s = 0u; s < 2u; ++s) {                                                              \
-            uint base = (s == 0u ? (f).skyFrames.x : (f).skyFrames.y) * stride + kSkyFrameHeaderFloats; \
-            float ws = s == 0u ? 1.0 - (f).skyBlend.x : (f).skyBlend.x;                               \
-            uint i00 = base + 3u * (y0 * width + x0), i10 = base + 3u * (y0 * width + x1);            \
-            uint i01 = base + 3u * (y1 * width + x0), i11 = base + 3u * (y1 * width + x1);            \
-            for (uint c = 0u; c < 3u; ++c) {                                                          \
-                float top = mix(skyData[i00 + c], skyData[i10 + c], ax);                              \
-                float bottom = mix(skyData[i01 + c], skyData[i11 + c], ax);                           \
-                result[c] += ws * mix(top, bottom, ay);                                               \
-            }                                                                                         \
-        }                                                                                             \
-        if (dot(dir, (f).sunDirection.xyz) > cos((f).sunColor.w))                                     \
-            result += (f).sunColor.rgb;                                                               \
-    }
-
 #endif

@@ -11,6 +11,7 @@
 #include "render/offscreen.h"
 #include "render/render_targets.h"
 #include "sh_light.h"
+#include "sky/sky_day.h"
 #include "vk/context.h"
 #include "vk/memory.h"
 #include <algorithm>
@@ -32,12 +33,13 @@ TEST_F(Gpu, TimestampsBracketEveryPass) {
     Offscreen offscreen = createOffscreen(*context, {32, 32});
     Camera camera;
     FrameTimings t = renderOffscreenFrame(*context, renderer, offscreen, frameState(camera, 32, 32));
-    ASSERT_EQ(t.gpu.size(), 5u);
+    ASSERT_EQ(t.gpu.size(), 6u);
     EXPECT_EQ(t.gpu[0].label, "animate");
     EXPECT_EQ(t.gpu[1].label, "cull");
     EXPECT_EQ(t.gpu[2].label, "light");
-    EXPECT_EQ(t.gpu[3].label, "draw");
-    EXPECT_EQ(t.gpu[4].label, "tonemap");
+    EXPECT_EQ(t.gpu[3].label, "sky");
+    EXPECT_EQ(t.gpu[4].label, "draw");
+    EXPECT_EQ(t.gpu[5].label, "tonemap");
     for (const PassTime& p : t.gpu) {
         EXPECT_GE(p.milliseconds, 0.0) << p.label;
         EXPECT_LT(p.milliseconds, 10000.0) << p.label;
@@ -358,6 +360,43 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
     EXPECT_LE(hiddenButWritten, hidden / 20) << "of " << hidden << " pixels whose sample lies behind the meshes";
 }
 
+// The sky blend pass against its CPU reference: every texel of the backdrop is the two sky frames
+// around the hour blended by the hour's weight, to half-float precision. Two frames whose
+// backdrops differ, at an hour between them.
+TEST_F(Gpu, SkyBlendMatchesCpuReference) {
+    const sky::SkyParams params = sky::skyParamsForPreset("ci");
+    FieldScenery scenery = testScenery();
+    scenery.sky.frames = {sky::buildSkyFrame(params, 9.0), sky::buildSkyFrame(params, 11.0)};
+    FieldRenderer renderer =
+        createFieldRenderer(*context, staticClumps(testMeshes()), scatter(100, 3), testAtlas(), scenery);
+    Offscreen offscreen = createOffscreen(*context, {32, 32});
+    FrameState state = frameState(Camera{}, 32, 32);
+    state.hours = 10.3;
+    renderOffscreenFrame(*context, renderer, offscreen, state);
+    const std::vector<glm::vec3> gpuSky = readSkyImage(*context, renderer);
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
+
+    const sky::SkyBlend blend = sky::skyBlendAt(scenery.sky, state.hours);
+    ASSERT_EQ(blend.first, 0u);
+    ASSERT_EQ(blend.second, 1u);
+    ASSERT_GT(blend.weight, 0.2); // well inside the blend
+    ASSERT_LT(blend.weight, 0.9);
+    const std::vector<float>& a = scenery.sky.frames[0].image;
+    const std::vector<float>& b = scenery.sky.frames[1].image;
+    ASSERT_EQ(gpuSky.size(), size_t(params.imageWidth) * params.imageHeight);
+    const float w = float(blend.weight);
+    size_t apart = 0; // texels where the two frames differ by more than 5 %: the blend is exercised
+    for (size_t i = 0; i < gpuSky.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float first = a[3 * i + size_t(c)], second = b[3 * i + size_t(c)];
+            const float want = first * (1.0f - w) + second * w;
+            EXPECT_NEAR(gpuSky[i][c], want, 1e-3f * std::abs(want) + 1e-6f) << "texel " << i << " channel " << c;
+            apart += std::abs(first - second) > 0.05f * std::max(std::abs(first), std::abs(second));
+        }
+    EXPECT_GT(apart, gpuSky.size() / 4);
+}
+
 // With the far field, its splat pass is timed between the draw and the tone map (which is then the
 // resolve pass).
 TEST_F(Gpu, TimestampsBracketTheFarFieldsPasses) {
@@ -370,7 +409,7 @@ TEST_F(Gpu, TimestampsBracketTheFarFieldsPasses) {
         labels.push_back(p.label);
         EXPECT_GE(p.milliseconds, 0.0) << p.label;
     }
-    EXPECT_EQ(labels, (std::vector<std::string>{"animate", "cull", "light", "draw", "farSplat", "tonemap"}));
+    EXPECT_EQ(labels, (std::vector<std::string>{"animate", "cull", "light", "sky", "draw", "farSplat", "tonemap"}));
     destroyOffscreen(*context, offscreen);
     destroyFieldRenderer(*context, renderer);
 }
