@@ -418,6 +418,14 @@ void updateFrame(Context& ctx, FieldRenderer& r, const FrameState& state) {
         r.litWeight = f.skyBlend.x;
         r.lightValid = true;
     }
+    // The sky image is the exact blend the frame asks for: made again whenever that changes.
+    r.skyBlendThisFrame = !r.skyImageValid || f.skyFrames.x != r.blendedSky.x || f.skyFrames.y != r.blendedSky.y ||
+                          f.skyBlend.x != r.blendedWeight;
+    if (r.skyBlendThisFrame) {
+        r.blendedSky = f.skyFrames;
+        r.blendedWeight = f.skyBlend.x;
+        r.skyImageValid = true;
+    }
     r.cullThisFrame = !(state.freezeCulling && r.culledOnce);
     if (r.cpuDriver && r.cullThisFrame)
         cpuDriverUpdate(ctx, *r.cpuDriver, f);
@@ -532,10 +540,12 @@ void recordGroundLightMap(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
                  access::kFragmentShaderRead, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
-// This frame's sky backdrop: the two sky frames around the hour blended into the sky image
-// (sky_blend.comp, a thread per texel), left ready for sky.frag. The previous frame's sky draw read
-// it; every texel is written again, so it starts from UNDEFINED.
+// This frame's sky backdrop, when the sky moved: the two sky frames around the hour blended into the
+// sky image (sky_blend.comp, a thread per texel), left ready for sky.frag. The previous frame's sky
+// draw read it; every texel is written again, so it starts from UNDEFINED.
 void recordSkyBlend(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
+    if (!r.skyBlendThisFrame)
+        return;
     imageBarrier(cmd, r.skyImage.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kFragmentShaderRead,
                  VK_IMAGE_LAYOUT_UNDEFINED, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL);
     bindPipeline(ctx, cmd, r.skyBlend, {r.frameUniforms, r.skyData, Binding(r.skyImage.view, VK_IMAGE_LAYOUT_GENERAL)});

@@ -361,8 +361,8 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
 }
 
 // The sky blend pass against its CPU reference: every texel of the backdrop is the two sky frames
-// around the hour blended by the hour's weight, to half-float precision. Two frames whose
-// backdrops differ, at an hour between them.
+// around the hour blended by the hour's weight, to half-float precision, after a frame that
+// blended it and after one that kept it. Two frames whose backdrops differ, at hours between them.
 TEST_F(Gpu, SkyBlendMatchesCpuReference) {
     const sky::SkyParams params = sky::skyParamsForPreset("ci");
     FieldScenery scenery = testScenery();
@@ -371,30 +371,37 @@ TEST_F(Gpu, SkyBlendMatchesCpuReference) {
         createFieldRenderer(*context, staticClumps(testMeshes()), scatter(100, 3), testAtlas(), scenery);
     Offscreen offscreen = createOffscreen(*context, {32, 32});
     FrameState state = frameState(Camera{}, 32, 32);
-    state.hours = 10.3;
-    renderOffscreenFrame(*context, renderer, offscreen, state);
-    const std::vector<glm::vec3> gpuSky = readSkyImage(*context, renderer);
+    // The same hour twice (the image is kept, not blended again), then a later one (blended again).
+    double previous = -1.0;
+    for (double hours : {10.3, 10.3, 10.6}) {
+        state.hours = hours;
+        renderOffscreenFrame(*context, renderer, offscreen, state);
+        EXPECT_EQ(renderer.skyBlendThisFrame, hours != previous) << hours;
+        previous = hours;
+        const std::vector<glm::vec3> gpuSky = readSkyImage(*context, renderer);
+
+        const sky::SkyBlend blend = sky::skyBlendAt(scenery.sky, hours);
+        ASSERT_EQ(blend.first, 0u);
+        ASSERT_EQ(blend.second, 1u);
+        ASSERT_GT(blend.weight, 0.2) << hours; // well inside the blend
+        ASSERT_LT(blend.weight, 0.95) << hours;
+        const std::vector<float>& a = scenery.sky.frames[0].image;
+        const std::vector<float>& b = scenery.sky.frames[1].image;
+        ASSERT_EQ(gpuSky.size(), size_t(params.imageWidth) * params.imageHeight);
+        const float w = float(blend.weight);
+        size_t apart = 0; // texels where the two frames differ by more than 5 %: the blend is exercised
+        for (size_t i = 0; i < gpuSky.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                const float first = a[3 * i + size_t(c)], second = b[3 * i + size_t(c)];
+                const float want = first * (1.0f - w) + second * w;
+                ASSERT_NEAR(gpuSky[i][c], want, 1e-3f * std::abs(want) + 1e-6f)
+                    << "hour " << hours << ", texel " << i << ", channel " << c;
+                apart += std::abs(first - second) > 0.05f * std::max(std::abs(first), std::abs(second));
+            }
+        EXPECT_GT(apart, gpuSky.size() / 4);
+    }
     destroyOffscreen(*context, offscreen);
     destroyFieldRenderer(*context, renderer);
-
-    const sky::SkyBlend blend = sky::skyBlendAt(scenery.sky, state.hours);
-    ASSERT_EQ(blend.first, 0u);
-    ASSERT_EQ(blend.second, 1u);
-    ASSERT_GT(blend.weight, 0.2); // well inside the blend
-    ASSERT_LT(blend.weight, 0.9);
-    const std::vector<float>& a = scenery.sky.frames[0].image;
-    const std::vector<float>& b = scenery.sky.frames[1].image;
-    ASSERT_EQ(gpuSky.size(), size_t(params.imageWidth) * params.imageHeight);
-    const float w = float(blend.weight);
-    size_t apart = 0; // texels where the two frames differ by more than 5 %: the blend is exercised
-    for (size_t i = 0; i < gpuSky.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            const float first = a[3 * i + size_t(c)], second = b[3 * i + size_t(c)];
-            const float want = first * (1.0f - w) + second * w;
-            EXPECT_NEAR(gpuSky[i][c], want, 1e-3f * std::abs(want) + 1e-6f) << "texel " << i << " channel " << c;
-            apart += std::abs(first - second) > 0.05f * std::max(std::abs(first), std::abs(second));
-        }
-    EXPECT_GT(apart, gpuSky.size() / 4);
 }
 
 // With the far field, its splat pass is timed between the draw and the tone map (which is then the
