@@ -419,12 +419,11 @@ void updateFrame(Context& ctx, FieldRenderer& r, const FrameState& state) {
         r.lightValid = true;
     }
     // The sky image is the exact blend the frame asks for: made again whenever that changes.
-    r.skyBlendThisFrame = !r.skyImageValid || f.skyFrames.x != r.blendedSky.x || f.skyFrames.y != r.blendedSky.y ||
-                          f.skyBlend.x != r.blendedWeight;
+    r.skyBlendThisFrame =
+        f.skyFrames.x != r.blendedSky.x || f.skyFrames.y != r.blendedSky.y || f.skyBlend.x != r.blendedWeight;
     if (r.skyBlendThisFrame) {
         r.blendedSky = f.skyFrames;
         r.blendedWeight = f.skyBlend.x;
-        r.skyImageValid = true;
     }
     r.cullThisFrame = !(state.freezeCulling && r.culledOnce);
     if (r.cpuDriver && r.cullThisFrame)

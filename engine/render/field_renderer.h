@@ -210,9 +210,8 @@ struct FieldRenderer {
     gpu::uvec4 litSky{0u};       // the sky frames it was projected for
     float litWeight = -1.0f;     // and their weight
     bool lightThisFrame = false; // the sky moved by 1/32 of a sky frame since the last light pass
-    // The sky image (sky_blend.comp) holds the blend of these frames at this weight; blended again
-    // only when the frame asks for another (skyBlendThisFrame).
-    bool skyImageValid = false;
+    // The sky image (sky_blend.comp) holds the blend of these frames at this weight (-1 before the
+    // first blend: no frame's weight); blended again only when the frame asks for another.
     gpu::uvec4 blendedSky{0u};
     float blendedWeight = -1.0f;
     bool skyBlendThisFrame = false;

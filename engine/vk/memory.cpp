@@ -292,40 +292,37 @@ Image createTexture(Context& ctx, VkExtent2D extent, VkFormat format, const void
     return image;
 }
 
-VkSampler createLinearSampler(Context& ctx, float maxLod) {
+namespace {
+
+// meadow's samplers differ in their filter, how u is addressed and their mip range; v and w clamp
+// to the edge.
+VkSampler createSampler(Context& ctx, VkFilter filter, VkSamplerMipmapMode mipmap, VkSamplerAddressMode u,
+                        float maxLod) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = VK_FILTER_LINEAR;
-    info.minFilter = VK_FILTER_LINEAR;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.magFilter = info.minFilter = filter;
+    info.mipmapMode = mipmap;
+    info.addressModeU = u;
+    info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     info.maxLod = maxLod;
     VkSampler sampler;
     VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));
     return sampler;
 }
 
+} // namespace
+
+VkSampler createLinearSampler(Context& ctx, float maxLod) {
+    return createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                         maxLod);
+}
+
 VkSampler createNearestSampler(Context& ctx) {
-    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = VK_FILTER_NEAREST;
-    info.minFilter = VK_FILTER_NEAREST;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    VkSampler sampler;
-    VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));
-    return sampler;
+    return createSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
+                         0.0f);
 }
 
 VkSampler createPanoramaSampler(Context& ctx) {
-    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = VK_FILTER_LINEAR;
-    info.minFilter = VK_FILTER_LINEAR;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.maxLod = 0.0f;
-    VkSampler sampler;
-    VK_CHECK(vkCreateSampler(ctx.device, &info, nullptr, &sampler));
-    return sampler;
+    return createSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST, VK_SAMPLER_ADDRESS_MODE_REPEAT, 0.0f);
 }
 
 void readbackBuffer(Context& ctx, const Buffer& source, void* data, VkDeviceSize size, VkDeviceSize sourceOffset) {
