@@ -4,6 +4,7 @@
 #include "pipeline/build_library.h"
 #include "plants/atlas.h"
 #include "plants/iris.h"
+#include "scratch_dir.h"
 
 #include <filesystem>
 #include <fstream>
@@ -17,10 +18,9 @@ namespace {
 
 const std::filesystem::path kGltf = std::filesystem::path(MEADOW_SOURCE_DIR) / "tests/data/gltf";
 
-std::filesystem::path scratchDir() {
-    auto dir = std::filesystem::temp_directory_path() / ("meadow-unit-user-plants-" + std::to_string(getpid()));
-    std::filesystem::create_directories(dir);
-    return dir;
+const std::filesystem::path& scratchDir() {
+    static const test::ScratchDir dir("meadow-unit-user-plants");
+    return dir.path();
 }
 
 // The robustness corpus's micro scene (a library in seconds) with another plant.
@@ -84,3 +84,16 @@ TEST(UserPlants, StemDiameterAndImagesBesideTheGltfAreCacheInputs) {
 }
 
 } // namespace
+
+// The tests' scratch folders go when their process ends (scratch_dir.h): runs leave nothing in /tmp.
+TEST(ScratchDir, RemovesItsFolderAndItsFilesWhenDestroyed) {
+    std::filesystem::path path;
+    {
+        const test::ScratchDir dir("meadow-unit-scratch");
+        path = dir.path();
+        EXPECT_TRUE(std::filesystem::is_directory(path));
+        std::filesystem::create_directories(path / "inner");
+        std::ofstream(path / "inner" / "file.txt") << "x";
+    }
+    EXPECT_FALSE(std::filesystem::exists(path)) << path;
+}

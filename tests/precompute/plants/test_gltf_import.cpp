@@ -2,6 +2,7 @@
 // kind of unusable asset is refused with a message naming the file and the problem.
 #include "core/error.h"
 #include "plants/gltf_import.h"
+#include "scratch_dir.h"
 
 #include <OpenImageIO/imageio.h>
 #include <cstring>
@@ -164,9 +165,8 @@ nlohmann::json readJson(const std::filesystem::path& path) {
 }
 
 std::filesystem::path scratch(const std::string& name) {
-    auto dir = std::filesystem::temp_directory_path() / ("meadow-gltf-test-" + std::to_string(getpid()));
-    std::filesystem::create_directories(dir);
-    return dir / name;
+    static const test::ScratchDir dir("meadow-gltf-test");
+    return dir.path() / name;
 }
 
 std::filesystem::path writeJson(const std::string& name, const nlohmann::json& doc) {
