@@ -3,11 +3,11 @@
 #include "core/error.h"
 #include "library/mesh.h"
 #include "plants/atlas.h"
+#include "scratch_dir.h"
 
 #include <OpenImageIO/imageio.h>
 #include <filesystem>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 namespace meadow {
 namespace {
@@ -37,12 +37,6 @@ glm::vec3 meanColour(const TextureAtlas& a, PartKind part) {
         for (float u = 0.02f; u < 1.0f; u += 0.04f, ++n)
             sum += colourAt(a, part, u, v);
     return sum / static_cast<float>(n);
-}
-
-std::filesystem::path scratchDir() {
-    auto dir = std::filesystem::temp_directory_path() / ("meadow-plants-test-" + std::to_string(getpid()));
-    std::filesystem::create_directories(dir);
-    return dir;
 }
 
 TEST(Atlas, SameSeedSameBytesOtherSeedOtherBytes) {
@@ -147,7 +141,8 @@ TEST(Atlas, PartsHaveTheirColours) {
 }
 
 TEST(Atlas, WritesAPngThatReadsBack) {
-    auto dir = scratchDir();
+    const test::ScratchDir scratch("meadow-plants-test");
+    const std::filesystem::path& dir = scratch.path();
     auto path = dir / "atlas.png";
     writeAtlas(path, atlas());
     auto in = OIIO::ImageInput::open(path.string());
@@ -162,7 +157,6 @@ TEST(Atlas, WritesAPngThatReadsBack) {
     EXPECT_EQ(pixels, atlas().rgba);
     // Only the finished file is left behind: the temporary was renamed.
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
-    std::filesystem::remove_all(dir);
 }
 
 TEST(Atlas, UnwritablePathNamesTheFile) {
