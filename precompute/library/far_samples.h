@@ -27,8 +27,9 @@ struct FarSample {
                               // the nearest far-LOD vertex
     uint32_t lightVertex = 0; // the clump vertex (of LOD 0) whose light transfer lights the sample: the
                               // sample's triangle's nearest vertex (its normal and shadowing)
-    uint32_t visibility = gpu::kFarAllVisible; // the views from which nothing of its own clump hides
-                                               // the sample, a bit each (far_splat.h); other bits 0
+    uint32_t visibility = gpu::kFarAllVisible; // the views from some of whose cell nothing of its own
+                                               // clump hides the sample, a bit each (far_splat.h);
+                                               // other bits 0
 };
 
 struct FarSamples {
