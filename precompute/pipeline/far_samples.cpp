@@ -99,7 +99,7 @@ constexpr int kVisibilityTries = 8;
 // through a gap is in sight there, and the splats' depth test hides it from the rest of the cell
 // as LOD 0 would. With one direction such samples were dropped in proportion to the share of the
 // cell that hides them, which left the inner, shadowed parts of a clump out and the far field 3-9 %
-// too bright against LOD 0 (docs/BENCHMARKS.md).
+// too bright against the same clumps drawn at LOD 0 (docs/BENCHMARKS.md).
 void measureVisibility(const FarSurface& surface, std::vector<FarSample>& samples, uint64_t seed) {
     transfer::RayScene scene(false);
     scene.setMesh(surface.positions, surface.indices);

@@ -504,6 +504,12 @@ FarSurface quads(const std::vector<std::array<glm::vec3, 3>>& spans, bool closed
     return s;
 }
 
+// Two upright 1 m sheets facing +z, x in [-0.5, 0.5], y in [0, 1]: one at z = 0, one `gap` behind it.
+FarSurface sheetPair(float gap) {
+    return quads(
+        {{glm::vec3(-0.5f, 0.0f, 0.0f), {1, 0, 0}, {0, 1, 0}}, {glm::vec3(-0.5f, 0.0f, -gap), {1, 0, 0}, {0, 1, 0}}});
+}
+
 float gainAt(const FarSamples& far, uint32_t size, uint32_t elevation) {
     return far.gain[size * gpu::kFarGainElevations + elevation];
 }
@@ -563,8 +569,7 @@ TEST(FarSamples, CoverageGainCountsTheGroundInFront) {
 // the front one's from behind; a cut-out texel lets the rays through.
 TEST(FarSamples, VisibilityBitsAreTheViewsNothingOfTheClumpHidesASampleFrom) {
     const auto pair = [](const RgbaImage* atlas) {
-        FarSurface s = quads({{glm::vec3(-0.5f, 0.0f, 0.0f), {1, 0, 0}, {0, 1, 0}},
-                              {glm::vec3(-0.5f, 0.0f, -0.2f), {1, 0, 0}, {0, 1, 0}}});
+        FarSurface s = sheetPair(0.2f);
         s.atlas = atlas;
         return s;
     };
@@ -623,8 +628,7 @@ TEST(FarSamples, VisibilityBitsAreTheViewsNothingOfTheClumpHidesASampleFrom) {
 // 7's cell (azimuths 315 to 360 degrees, eye towards +z and +x), a fifth to two thirds of it, and from
 // none of view 0's (eye towards +z and -x). One ray per cell kept view 7's bit for about 45 % of them.
 TEST(FarSamples, VisibilityBitsKeepASampleThatPartOfTheCellSees) {
-    const FarSurface pair = quads(
-        {{glm::vec3(-0.5f, 0.0f, 0.0f), {1, 0, 0}, {0, 1, 0}}, {glm::vec3(-0.5f, 0.0f, -0.2f), {1, 0, 0}, {0, 1, 0}}});
+    const FarSurface pair = sheetPair(0.2f);
     const FarSamples far = buildFarSamples(pair, 2048, 5);
     uint32_t nearEdge = 0, seenPastEdge = 0;
     for (const FarSample& sample : far.samples) {
@@ -644,8 +648,7 @@ TEST(FarSamples, VisibilityBitsKeepASampleThatPartOfTheCellSees) {
 // other, the hind one's samples add nothing to the splats' coverage from the front, so the pair
 // needs a larger gain than the same samples all counted as in sight.
 TEST(FarSamples, CoverageGainCountsOnlyTheSamplesAViewSees) {
-    const FarSurface pair = quads(
-        {{glm::vec3(-0.5f, 0.0f, 0.0f), {1, 0, 0}, {0, 1, 0}}, {glm::vec3(-0.5f, 0.0f, -0.05f), {1, 0, 0}, {0, 1, 0}}});
+    const FarSurface pair = sheetPair(0.05f);
     const FarSamples far = buildFarSamples(pair, 4096, 7);
     FarSamples blind = far;
     for (FarSample& sample : blind.samples)
