@@ -2,13 +2,15 @@
 // Far field, splat pass: far instances drawn as surface samples (issue 18; far_splat.h). Each
 // workgroup takes kFarInstancesPerGroup entries of the cull pass's far list at a time (indirect
 // dispatch, then every gl_NumWorkGroups-th set), gl_WorkGroupSize.x / kFarInstancesPerGroup threads
-// striding over the first `count` of each one's clump's shuffled samples. Each sample moves with the last-LOD vertex it follows (x̄ + U q at that LOD's
+// striding over `count` of each one's clump's shuffled samples, a run from the instance's own start
+// (farSampleStart). Each sample moves with the last-LOD vertex it follows (x̄ + U q at that LOD's
 // modes, blended across graph jumps, as instance.vert) and takes the light of its triangle's
-// nearest vertex to first order in that displacement, projects to a square of `side` pixels, and is kept (while the
-// instance crossfades from LOD 4) where the dither gives the pixel to the far field. The nearest sample of a pixel
-// wins by a 64-bit atomicMin of (depth key, RGB9E5 radiance), which is order independent; far_resolve.comp writes
-// the winners that are nearer than the meshes' depth (far_splat.h's farWordShows: the same picture as testing
-// each sample, with no depth fetch in the loop below).
+// nearest vertex to first order in that displacement, projects to a square of `side` pixels, and is
+// kept (while the instance crossfades from LOD 4) where the dither gives the pixel to the far
+// field. The nearest sample of a pixel wins by a 64-bit atomicMin of (depth key, RGB9E5 radiance),
+// which is order independent; far_resolve.comp writes the winners that are nearer than the meshes'
+// depth (far_splat.h's farWordShows: the same picture as testing each sample, with no depth fetch
+// in the loop below).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -79,6 +81,7 @@ void main() {
             eye -= 2.0 * dot(eye, m) * m;
         float azimuth = farEyeAzimuth(eye.x, eye.z);
         uint instance = entry & kLodEntryIndexMask;
+        uint start = farSampleStart(instance, clump.far.y);
         uint next = lane;
         for (;;) {
             // The next of this thread's samples that its own clump does not hide from here, found in
@@ -87,7 +90,8 @@ void main() {
             // the body would run it for nearly every sample (docs/BENCHMARKS.md).
             GpuFarSample farSample;
             for (; next < count; next += lanes) {
-                farSample.position = texelFetch(farSamples, int(2u * (clump.far.x + next)));
+                farSample.position =
+                    texelFetch(farSamples, int(2u * (clump.far.x + farSampleSlot(start, next, clump.far.y))));
                 uint bit = farVisibilityBitAt(azimuth, elevation, farSampleRandom(instance, next + kFarAzimuthStream),
                                               farSampleRandom(instance, next + kFarElevationStream));
                 if ((farSample.position.w >> bit & 1u) != 0u)
@@ -97,7 +101,7 @@ void main() {
                 break;
             uint k = next;
             next += lanes;
-            farSample.data = texelFetch(farSamples, int(2u * (clump.far.x + k) + 1u));
+            farSample.data = texelFetch(farSamples, int(2u * (clump.far.x + farSampleSlot(start, k, clump.far.y)) + 1u));
             uvec4 motion = texelFetch(lodVertices, int(3u * farSample.data.w + 2u)); // GpuLodVertex::motion
             uint rank = motion.w & 0xffffu;
             uint q0 = inst.offsets.x + motion.y, q1 = inst.offsets.y + motion.y;

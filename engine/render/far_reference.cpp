@@ -74,8 +74,10 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
         if (mirrored)
             eye -= 2.0f * glm::dot(eye, m) * m;
         const float azimuth = gpu::farEyeAzimuth(eye.x, eye.z);
+        const uint32_t start = gpu::farSampleStart(instance, clump.far.y);
         for (uint32_t k = 0; k < count; ++k) {
-            const gpu::GpuFarSample& farSample = at(in.farSamples, size_t(clump.far.x) + k, "far sample");
+            const gpu::GpuFarSample& farSample =
+                at(in.farSamples, size_t(clump.far.x) + gpu::farSampleSlot(start, k, clump.far.y), "far sample");
             const uint32_t bit =
                 gpu::farVisibilityBitAt(azimuth, elevation, gpu::farSampleRandom(instance, k + gpu::kFarAzimuthStream),
                                         gpu::farSampleRandom(instance, k + gpu::kFarElevationStream));

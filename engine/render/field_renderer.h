@@ -66,7 +66,7 @@ struct FieldClump {
     std::vector<float> groundTransfer;
     uint32_t groundResolution = 0;
     float groundSize = 0.0f;
-    // The far field (far_splat.h): surface samples, shuffled so any prefix is an unbiased subset,
+    // The far field (far_splat.h): surface samples, shuffled so any run is an unbiased subset,
     // each following a vertex of the last LOD; `farArea` the surface they cover (m^2). Empty: the
     // clump stays a LOD 4 mesh however small it gets.
     std::vector<FarSample> far;

@@ -1,8 +1,9 @@
 // The far field's surface samples of a clump or rock (docs/ARCHITECTURE.md; issue 18): points
 // spread uniformly by area over LOD 0's surface, each with its normal, albedo and the far-LOD
-// vertex whose motion and light it plays, shuffled so that any prefix is an unbiased subset
-// (stochastic pruning, Cook et al. 2007): a far instance draws the first n and scales each
-// sample's footprint to area / n. pipeline/far_samples.h builds them; the FARS section stores them.
+// vertex whose motion and light it plays, shuffled so that any run of consecutive samples is an
+// unbiased subset (stochastic pruning, Cook et al. 2007): a far instance draws n of them from a
+// start of its own (far_splat.h farSampleStart, wrapping past the end) and scales each sample's
+// footprint to area / n. pipeline/far_samples.h builds them; the FARS section stores them.
 #pragma once
 
 #include "far_splat.h"
@@ -33,7 +34,8 @@ struct FarSample {
 };
 
 struct FarSamples {
-    // Shuffled: any prefix is an unbiased subset (a random permutation from the scene seed).
+    // Shuffled: any run of consecutive samples (cyclically) is an unbiased subset (a random
+    // permutation from the scene seed).
     std::vector<FarSample> samples;
     // m^2: the surface the samples cover (one side); each of n drawn samples stands for area / n.
     float area = 0.0f;

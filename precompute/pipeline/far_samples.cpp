@@ -422,8 +422,13 @@ std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains
                 std::vector<CalibrationSplat> splats;
                 splats.reserve(count);
                 const uint32_t bit = gpu::farVisibilityBit(uint32_t(a), ei);
+                // Each view draws its own run of the shuffled samples, as far instances do
+                // (farSampleSlot), from starts spread evenly over the list: the gain fits the runs'
+                // average, not one prefix.
+                const uint32_t available = uint32_t(far.samples.size());
+                const uint32_t start = uint32_t(uint64_t(a) * available / kAzimuths);
                 for (uint32_t k = 0; k < count; ++k) {
-                    const FarSample& sample = far.samples[k];
+                    const FarSample& sample = far.samples[gpu::farSampleSlot(start, k, available)];
                     if (!(sample.visibility >> bit & 1u))
                         continue; // hidden by its own clump from this view: the splat pass skips it
                     const glm::vec3 normal = unpackOctahedral(sample.normal);

@@ -49,7 +49,8 @@ FarSamples buildFarSamples(const FarSurface& surface, uint32_t count, uint64_t s
 // (pixels per metre = size / sqrt(far.area)), and
 //   - LOD 0 is rasterised as the mesh pass would: a pixel is covered where its centre falls in a
 //     triangle whose texel there (nearest, mip 0) has alpha >= 128;
-//   - the first farSampleCount(...) samples at kFarDefaultDensity are splatted as the splat pass
+//   - farSampleCount(...) samples at kFarDefaultDensity, each view a run of them from its own start
+//     (a / 8 of the way through the shuffled list; farSampleSlot), are splatted as the splat pass
 //     does (footprint, square side, far side of closed surfaces hidden), each covering with its
 //     probability independently, and the expected covered pixels summed;
 // and the gain is the factor on every footprint, in [1/4, 8], whose expected coverage equals LOD

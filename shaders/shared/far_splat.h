@@ -15,8 +15,8 @@
 // An empty pixel holds kFarEmpty in both halves.
 //
 // How many samples an instance draws follows its projected size (stochastic pruning, Cook,
-// Halstead, Planck and Ryu 2007): a prefix of its clump's shuffled samples, each then standing
-// for a larger share of the surface.
+// Halstead, Planck and Ryu 2007): a run of its clump's shuffled samples from a start of its own
+// (farSampleStart), each then standing for a larger share of the surface.
 //
 // Every operation here is exact or correctly rounded (bit patterns, ldexp, floor, products of two
 // values, no fused multiply-add where it is marked precise), so C++ and GLSL agree bit for bit.
@@ -222,6 +222,24 @@ MEADOW_FAR_FN float farSampleRandom(uint instance, uint index) {
     uint state = (instance * 1664525u + index * 2654435769u) * 747796405u + 2891336453u;
     uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
     return float(((word >> 22u) ^ word) >> 8u) * (1.0f / 16777216.0f);
+}
+
+// Which of its clump's `available` shuffled samples a far instance draws: `count` consecutive ones
+// (cyclically) from a start of its own, the k-th at farSampleSlot(start, k, available). A prefix of
+// one shuffle is an unbiased subset of the surface only on average over shuffles. A field has a
+// few clumps and thousands of instances of each, so with every instance drawing its clump's prefix,
+// the prefix's own chance mix showed over the whole field: at a few pixels per clump an instance
+// draws about ten samples, and one or two petals more or less among them made the low view 4.7 %
+// bluer than its reference (docs/BENCHMARKS.md). A start per instance averages the mix out over
+// the field; an instance's own samples still grow continuously with its count.
+MEADOW_FAR_CONST kFarStartStream = 3u << 24u;
+MEADOW_FAR_FN uint farSampleStart(uint instance, uint available) {
+    MEADOW_FAR_PRECISE float start = farFloor(farSampleRandom(instance, kFarStartStream) * float(available));
+    return uint(farMin(start, float(available - 1u)));
+}
+MEADOW_FAR_FN uint farSampleSlot(uint start, uint k, uint available) {
+    uint slot = start + k;
+    return slot >= available ? slot - available : slot;
 }
 
 // Self-occlusion (docs/ARCHITECTURE.md, The far field). LOD 0 shows only the surface that nothing

@@ -176,6 +176,31 @@ TEST(FarSplat, CoverageRandomNumbersAreUniformAndFixed) {
     EXPECT_NE(farSampleRandom(5u, 9u), farSampleRandom(6u, 9u));
 }
 
+TEST(FarSplat, InstancesDrawRunsOfTheirClumpsSamplesFromStartsOfTheirOwn) {
+    // 10,000 instances of one clump of 1,000 samples, each drawing 10: every sample drawn about as
+    // often (100 times), not only a prefix of ten; each instance's samples consecutive (cyclically)
+    // and distinct.
+    const uint available = 1000u, count = 10u, instances = 10000u;
+    std::vector<uint> drawn(available, 0u);
+    for (uint instance = 0; instance < instances; ++instance) {
+        const uint start = farSampleStart(instance, available);
+        ASSERT_LT(start, available);
+        for (uint k = 0; k < count; ++k) {
+            const uint slot = farSampleSlot(start, k, available);
+            ASSERT_EQ(slot, (start + k) % available) << instance << " " << k;
+            ++drawn[slot];
+        }
+    }
+    // Poisson-like counts of mean 100: each within 100 +- 6 sigma.
+    for (uint s = 0; s < available; ++s) {
+        EXPECT_GT(drawn[s], 40u) << s;
+        EXPECT_LT(drawn[s], 160u) << s;
+    }
+    // The same start every frame, and a run that wraps past the list's end.
+    EXPECT_EQ(farSampleStart(42u, available), farSampleStart(42u, available));
+    EXPECT_EQ(farSampleSlot(available - 2u, 3u, available), 1u);
+    EXPECT_EQ(farSampleStart(9u, 1u), 0u);
+}
 // The view that decides a sample's visibility (far_splat.h): an eye exactly in a view's direction
 // picks that view whatever the random numbers; straight above picks the top bit; between two views
 // the random number picks each in proportion to the eye's nearness to it.
