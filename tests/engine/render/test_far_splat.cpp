@@ -201,6 +201,7 @@ TEST(FarSplat, InstancesDrawRunsOfTheirClumpsSamplesFromStartsOfTheirOwn) {
     EXPECT_EQ(farSampleSlot(available - 2u, 3u, available), 1u);
     EXPECT_EQ(farSampleStart(9u, 1u), 0u);
 }
+
 // The view that decides a sample's visibility (far_splat.h): an eye exactly in a view's direction
 // picks that view whatever the random numbers; straight above picks the top bit; between two views
 // the random number picks each in proportion to the eye's nearness to it.
