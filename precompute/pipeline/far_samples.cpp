@@ -61,8 +61,8 @@ void checkSurface(const FarSurface& s) {
 
 // A direction towards the eye within visibility view (azimuth, elevation)'s cell, in clump space
 // (far_splat.h): the view's azimuth +- 22.5 degrees and elevation +- 15 degrees (kept within 0 and
-// 90), at (ja, je) in [0, 1)^2 across the cell. The calibration's views (CalibrationView) sit at
-// the cells' centres.
+// 90), at (ja, je) in [0, 1)^2 across the cell. The calibration's views (CalibrationView) sit four
+// to a cell in azimuth, at the bins' elevations.
 glm::vec3 visibilityDirection(uint32_t azimuth, uint32_t elevation, float ja, float je) {
     constexpr float kPi = 3.14159265358979f;
     const float step = 0.5f * kPi / float(gpu::kFarGainElevations - 1);
@@ -392,7 +392,14 @@ std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains
     float reach = 0.0f; // the surface's farthest point from the clump's origin
     for (const glm::vec3& p : surface.positions)
         reach = std::max(reach, glm::length(p));
-    constexpr int kAzimuths = 8;
+    // Four views per visibility view's cell, a quarter of a cell apart: a field turns its clumps
+    // only a little (their wind must stay in the plane it was simulated in), so the splat pass
+    // meets a clump from a few azimuths anywhere within the cells, where it takes each sample's bit
+    // from one of the two views around the eye (farVisibilityBitAt). Eight views at the cells'
+    // centres left the far field 3-7 % short of LOD 0's plant coverage in the field
+    // (docs/BENCHMARKS.md).
+    constexpr int kViewsPerCell = 4;
+    constexpr int kAzimuths = int(gpu::kFarVisibilityAzimuths) * kViewsPerCell;
     constexpr float kPi = 3.14159265358979f;
     const float side = std::sqrt(far.area);
     for (uint32_t si = 0; si < gpu::kFarGainSizes; ++si) {
@@ -407,7 +414,10 @@ std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains
             double truth = 0.0;
             std::vector<std::pair<CalibrationView, std::vector<CalibrationSplat>>> views;
             for (int a = 0; a < kAzimuths; ++a) {
-                const float azimuth = (float(a) + 0.5f) * (2.0f * kPi / float(kAzimuths));
+                // The eye's azimuth in farEyeAzimuth's units (cells, from view 0's centre), and in
+                // radians about +y as CalibrationView takes it.
+                const float eyeAzimuth = (float(a) + 0.0625f) / float(kViewsPerCell);
+                const float azimuth = (eyeAzimuth + 0.5f) * (2.0f * kPi / float(gpu::kFarVisibilityAzimuths));
                 // Sub-pixel offsets from the plastic sequence, so the views sample the pixel grid evenly.
                 const glm::vec2 offset(std::fmod(0.5f + 0.7548776662f * float(a + 1), 1.0f),
                                        std::fmod(0.5f + 0.5698402910f * float(a + 1), 1.0f));
@@ -421,7 +431,6 @@ std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains
                 truth += double(rasterisedCoverage(surface, view));
                 std::vector<CalibrationSplat> splats;
                 splats.reserve(count);
-                const uint32_t bit = gpu::farVisibilityBit(uint32_t(a), ei);
                 // Each view draws its own run of the shuffled samples, as far instances do
                 // (farSampleSlot), from starts spread evenly over the list: the gain fits the runs'
                 // average, not one prefix.
@@ -429,6 +438,9 @@ std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains
                 const uint32_t start = uint32_t(uint64_t(a) * available / kAzimuths);
                 for (uint32_t k = 0; k < count; ++k) {
                     const FarSample& sample = far.samples[gpu::farSampleSlot(start, k, available)];
+                    const uint32_t bit = gpu::farVisibilityBitAt(
+                        eyeAzimuth, float(ei), gpu::farSampleRandom(uint32_t(a), k + gpu::kFarAzimuthStream),
+                        gpu::farSampleRandom(uint32_t(a), k + gpu::kFarElevationStream));
                     if (!(sample.visibility >> bit & 1u))
                         continue; // hidden by its own clump from this view: the splat pass skips it
                     const glm::vec3 normal = unpackOctahedral(sample.normal);

@@ -45,16 +45,17 @@ FarSurface farSurfaceOfRock(const LibraryRock& rock);
 FarSamples buildFarSamples(const FarSurface& surface, uint32_t count, uint64_t seed);
 
 // The coverage gains of far.gain (far_splat.h), measured: per size and elevation bin, the surface
-// is seen from 8 azimuths (each with its own sub-pixel offset), orthographically at that size
-// (pixels per metre = size / sqrt(far.area)), and
+// is seen from 32 azimuths, four to each visibility view's cell (each with its own sub-pixel
+// offset), orthographically at that size (pixels per metre = size / sqrt(far.area)), and
 //   - LOD 0 is rasterised as the mesh pass would: a pixel is covered where its centre falls in a
 //     triangle whose texel there (nearest, mip 0) has alpha >= 128;
 //   - farSampleCount(...) samples at kFarDefaultDensity, each view a run of them from its own start
-//     (a / 8 of the way through the shuffled list; farSampleSlot), are splatted as the splat pass
-//     does (footprint, square side, far side of closed surfaces hidden), each covering with its
+//     (a / 32 of the way through the shuffled list; farSampleSlot), those in sight by the bit the
+//     splat pass would take there (farVisibilityBitAt), are splatted as the splat pass does
+//     (footprint, square side, far side of closed surfaces hidden), each covering with its
 //     probability independently, and the expected covered pixels summed;
 // and the gain is the factor on every footprint, in [1/4, 8], whose expected coverage equals LOD
-// 0's over the 8 views (bisection on the monotone coverage).
+// 0's over the 32 views (bisection on the monotone coverage).
 std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains(const FarSurface& surface,
                                                                                  const FarSamples& far);
 
