@@ -415,7 +415,8 @@ std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains
             std::vector<std::pair<CalibrationView, std::vector<CalibrationSplat>>> views;
             for (int a = 0; a < kAzimuths; ++a) {
                 // The eye's azimuth in farEyeAzimuth's units (cells, from view 0's centre), and in
-                // radians about +y as CalibrationView takes it.
+                // radians about +y as CalibrationView takes it. The first view sits a 64th of a
+                // cell past view 0's centre; any even spacing would do.
                 const float eyeAzimuth = (float(a) + 0.0625f) / float(kViewsPerCell);
                 const float azimuth = (eyeAzimuth + 0.5f) * (2.0f * kPi / float(gpu::kFarVisibilityAzimuths));
                 // Sub-pixel offsets from the plastic sequence, so the views sample the pixel grid evenly.
