@@ -1,11 +1,12 @@
 #version 460
 // Far field, resolve pass, which is also the tone mapper when the far field is on: every pixel where
-// a far-field sample won (far_splat.comp) and lies nearer than the meshes' depth takes that sample's
-// radiance, written into the HDR image (so EXR output has it too); then the pixel is tone mapped
-// into the LDR image as tonemap.comp does (tonemap.h). The depth test is here, once per pixel,
-// rather than per sample in the splat pass: the same picture (far_splat.h, farWordShows), and no
-// depth fetch in the splat pass's loop. One pass instead of a resolve and a tone map: each pixel's
-// HDR value is read and written once (docs/BENCHMARKS.md).
+// a far-field sample won (far_splat.comp) and lies nearer than the meshes' surface anywhere in the
+// pixel (far_splat.h, farWordShows) takes that sample's radiance, written into the HDR
+// image (so EXR output has it too); then the pixel is tone mapped into the LDR image as
+// tonemap.comp does (tonemap.h). The depth test is here, once per pixel, rather than per sample in
+// the splat pass: the same picture (far_splat.h, farWordShows), and no depth fetch in the splat
+// pass's loop. One pass instead of a resolve and a tone map: each pixel's HDR value is read and
+// written once (docs/BENCHMARKS.md).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
@@ -27,7 +28,12 @@ void main() {
         return;
     uvec2 word = unpackUint2x32(visibility[uint(p.y) * uint(size.x) + uint(p.x)]);
     vec3 radiance;
-    if (farWordShows(word.y, texelFetch(meshDepth, p, 0).r)) {
+    ivec2 last = size - 1;
+    float meshLimit = farMeshDepthLimit(texelFetch(meshDepth, p, 0).r, texelFetch(meshDepth, max(p - ivec2(1, 0), 0), 0).r,
+                                        texelFetch(meshDepth, min(p + ivec2(1, 0), last), 0).r,
+                                        texelFetch(meshDepth, max(p - ivec2(0, 1), 0), 0).r,
+                                        texelFetch(meshDepth, min(p + ivec2(0, 1), last), 0).r);
+    if (farWordShows(word.y, meshLimit)) {
         // RGB9E5 converts to half floats exactly (9-bit mantissas, exponents from -24 to 15), so
         // the LDR pixel is the HDR image's tone mapped, as without the far field.
         radiance = unpackRgb9e5(word.x);

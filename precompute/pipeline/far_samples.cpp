@@ -293,16 +293,19 @@ struct CalibrationView {
         const glm::vec3 v = turn(p);
         return glm::vec2(v.x, -v.y) * pixelsPerMetre + offset + glm::vec2(0.5f * float(grid));
     }
-    // Whether the ground the clump stands on (the plane y = 0) is nearer than a point `towardEye`
-    // (its view coordinate towards the eye) along the ray through the centre of pixel row `row`:
-    // the mesh depth the splat pass tests against holds the ground there. (A sample near the base
-    // loses the pixels whose centre sees the ground in front of it; a mesh's fragment never does, as
-    // it lies on the ray.)
+    // Whether the ground the clump stands on (the plane y = 0) hides a point `towardEye` (its view
+    // coordinate towards the eye) at pixel row `row`, as the resolve pass's depth test would
+    // (far_splat.h, farWordShows and farMeshDepthLimit): there the ground reaches half a row's
+    // change behind where the ray through the row's centre meets it, and hides the point if it is
+    // nearer than that. (Tested at the centre, a sample near the base lost the pixels whose centre
+    // sees the ground just in front of it, where a mesh's fragment, which lies on the ray, loses
+    // none.)
     bool groundHides(int row, float towardEye) const {
         const float up = -((float(row) + 0.5f) - offset.y - 0.5f * float(grid)) / pixelsPerMetre;
         if (sinElevation < 1e-6f)
             return up < 0.0f; // seen level: below the ground line is ground
-        return -cosElevation * up / sinElevation >= towardEye;
+        const float perRow = cosElevation / (sinElevation * pixelsPerMetre); // towards the eye
+        return -cosElevation * up / sinElevation - 0.5f * perRow >= towardEye;
     }
 };
 

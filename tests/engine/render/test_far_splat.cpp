@@ -44,9 +44,9 @@ TEST(FarSplat, NearerDepthsHaveSmallerKeys) {
     EXPECT_LT(word(0.0f, 0.0f, 0.0f, 0.0f), (uint64_t(kFarEmpty) << 32) | kFarEmpty); // any sample beats empty
 }
 
-// The resolve's test: a word shows where its depth is nearer than the meshes' (strictly: the meshes
-// win ties, as the splat pass's per-sample test did); an empty word never shows, not even over the
-// sky (depth 0).
+// The resolve's test: a word shows where its depth is nearer than the meshes' limit (strictly: the
+// meshes win ties, as the splat pass's per-sample test did); an empty word never shows, not even
+// over the sky (depth 0).
 TEST(FarSplat, AWordShowsOnlyWhereItIsNearerThanTheMeshes) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -58,6 +58,28 @@ TEST(FarSplat, AWordShowsOnlyWhereItIsNearerThanTheMeshes) {
     EXPECT_TRUE(farWordShows(farDepthKey(std::nextafter(0.25f, 1.0f)), 0.25f));
     EXPECT_TRUE(farWordShows(farDepthKey(1e-30f), 0.0f));
     EXPECT_FALSE(farWordShows(kFarEmpty, 0.0f));
+}
+
+// The meshes' limit at a pixel: where the neighbours continue the centre's plane, the depth half a
+// pixel's change further in x and in y; where either neighbour of an axis breaks off (a silhouette
+// on one side, a blade a pixel wide on both), that axis adds nothing.
+TEST(FarSplat, TheMeshesReachHalfAPixelsChangeBehindTheirCentreWhereTheyArePlanar) {
+    // A plane's reversed depth is affine on the screen: 0.5 at the centre, 0.02 more per pixel in
+    // x and 0.1 per pixel in y (the ground seen at a grazing angle).
+    EXPECT_FLOAT_EQ(farMeshDepthLimit(0.5f, 0.48f, 0.52f, 0.4f, 0.6f), 0.5f - 0.01f - 0.05f);
+    EXPECT_FLOAT_EQ(farMeshDepthLimit(0.5f, 0.52f, 0.48f, 0.6f, 0.4f), 0.5f - 0.01f - 0.05f); // either sign
+    EXPECT_EQ(farMeshDepthLimit(0.5f, 0.5f, 0.5f, 0.5f, 0.5f), 0.5f); // facing the eye: the centre's depth
+    // A step on one side in y (the ground's far edge against the sky, depth 0): y adds nothing.
+    EXPECT_FLOAT_EQ(farMeshDepthLimit(0.5f, 0.48f, 0.52f, 0.0f, 0.6f), 0.5f - 0.01f);
+    // A blade a pixel wide before ground far behind on both sides in x: x adds nothing.
+    EXPECT_FLOAT_EQ(farMeshDepthLimit(0.5f, 0.05f, 0.06f, 0.4f, 0.6f), 0.5f - 0.05f);
+    // Gently curved (a rolling terrain): still counted; sharply bent: not.
+    EXPECT_FLOAT_EQ(farMeshDepthLimit(0.5f, 0.5f, 0.5f, 0.41f, 0.6f), 0.5f - 0.5f * 0.5f * (0.6f - 0.41f));
+    EXPECT_EQ(farMeshDepthLimit(0.5f, 0.5f, 0.5f, 0.2f, 0.6f), 0.5f);
+    // A sample just behind the centre's depth on a grazing ground shows; one behind the reach does not.
+    const float limit = farMeshDepthLimit(0.5f, 0.5f, 0.5f, 0.4f, 0.6f);
+    EXPECT_TRUE(farWordShows(farDepthKey(0.46f), limit));
+    EXPECT_FALSE(farWordShows(farDepthKey(0.44f), limit));
 }
 
 TEST(FarSplat, TheMinimumIsTheSameInAnyOrder) {

@@ -10,12 +10,13 @@
 #     and its LOD view;
 #   - far again on one lavapipe thread, which must give the same bytes.
 # meadow_far_compare measures over the far field's region (where far or ref shows the far field):
-#   - against ref, the far field's own error: mean colour within MAX_COLOUR (4.5 %: the three views
-#     of the three far.views tests measure 0.6-3.9 %; with every far instance drawing its clump's
-#     first samples instead of a run from its own start, far.views_default's low view was 4.7 %
-#     too blue, and with one visibility ray per view and sample the low views were at 8-9.5 %),
-#     plant coverage ratio within COVERAGE (0.9 to 1.1), SSIM at least the LOD 4 meshes' less 0.25
-#     (the splats' pixel-scale noise, which 7x7 SSIM windows weigh and the means do not);
+#   - against ref, the far field's own error: the issue's bounds, mean colour within MAX_COLOUR (3 %)
+#     and plant coverage ratio within COVERAGE (0.95 to 1.05); the three views of the three far.views
+#     tests measure 0.6-2.7 % and 0.959-1.002 (docs/BENCHMARKS.md, "The meshes' depth as far as it
+#     reaches in the pixel"; with the depth tested at the pixel's centre the high view was 3.9 % and
+#     0.965, and with every far instance drawing its clump's first samples the low view was 4.7 %
+#     too blue); SSIM at least the LOD 4 meshes' less 0.25 (the splats' pixel-scale noise, which
+#     7x7 SSIM windows weigh and the means do not);
 #   - against the truth, which adds the LOD meshes' own difference from LOD 0 where nearer clumps
 #     overlap the region: colour within 35 %, coverage 0.8 to 1.2, the same SSIM bound.
 # And over every plant pixel of the frame (--lods 0,5), against the truth: the mean colour with the
@@ -29,7 +30,7 @@
 # PRESET=full in the environment measures the full field instead (a benchmark, not a test: minutes).
 set -euo pipefail
 meadow="$1"; compare="$2"; scene="$3"; out="$4"; size="${5:-480x270}"; radius="${6:-7}"
-maxColour="${7:-0.045}"; coverage="${8:-0.9,1.1}"; preset="${PRESET:-ci}"
+maxColour="${7:-0.03}"; coverage="${8:-0.95,1.05}"; preset="${PRESET:-ci}"
 mkdir -p "$out"
 far=(--far-radius "$radius"); [[ "$radius" == default ]] && far=()
 views=("default:" "low:-30,1.2,-30,0,0.4,0" "high:-22,16,-22,4,0,4")
