@@ -28,8 +28,10 @@ void main() {
         return;
     uvec2 word = unpackUint2x32(visibility[uint(p.y) * uint(size.x) + uint(p.x)]);
     vec3 radiance;
+    // The meshes' depth at the pixel and its four neighbours (clamped at the image's edges).
     ivec2 last = size - 1;
-    float meshLimit = farMeshDepthLimit(texelFetch(meshDepth, p, 0).r, texelFetch(meshDepth, max(p - ivec2(1, 0), 0), 0).r,
+    float meshLimit = farMeshDepthLimit(texelFetch(meshDepth, p, 0).r,
+                                        texelFetch(meshDepth, max(p - ivec2(1, 0), 0), 0).r,
                                         texelFetch(meshDepth, min(p + ivec2(1, 0), last), 0).r,
                                         texelFetch(meshDepth, max(p - ivec2(0, 1), 0), 0).r,
                                         texelFetch(meshDepth, min(p + ivec2(0, 1), last), 0).r);
