@@ -293,19 +293,24 @@ struct CalibrationView {
         const glm::vec3 v = turn(p);
         return glm::vec2(v.x, -v.y) * pixelsPerMetre + offset + glm::vec2(0.5f * float(grid));
     }
-    // Whether the ground the clump stands on (the plane y = 0) hides a point `towardEye` (its view
-    // coordinate towards the eye) at pixel row `row`, as the resolve pass's depth test would
-    // (far_splat.h, farWordShows and farMeshDepthLimit): there the ground reaches half a row's
-    // change behind where the ray through the row's centre meets it, and hides the point if it is
-    // nearer than that. (Tested at the centre, a sample near the base lost the pixels whose centre
+    // The height above the clump's base of the centre of pixel row `row`, in the view's plane.
+    float rowUp(int row) const { return -((float(row) + 0.5f) - offset.y - 0.5f * float(grid)) / pixelsPerMetre; }
+    // Where the ray through the centre of row `row` meets the ground the clump stands on (the plane
+    // y = 0): its view coordinate towards the eye. The eye must be above the plane.
+    float groundTowardEye(int row) const { return -cosElevation * rowUp(row) / sinElevation; }
+    // Whether that ground hides a point `towardEye` (its view coordinate towards the eye) at pixel
+    // row `row`, by the resolve pass's own test (far_splat.h, farMeshDepthLimit): the view
+    // coordinate towards the eye stands in for the reversed depth, as both grow towards the eye and
+    // both are affine across a plane's pixels. The level ground reaches half a row's change behind
+    // its row's centre. (Tested at the centre, a sample near the base lost the pixels whose centre
     // sees the ground just in front of it, where a mesh's fragment, which lies on the ray, loses
     // none.)
     bool groundHides(int row, float towardEye) const {
-        const float up = -((float(row) + 0.5f) - offset.y - 0.5f * float(grid)) / pixelsPerMetre;
         if (sinElevation < 1e-6f)
-            return up < 0.0f; // seen level: below the ground line is ground
-        const float perRow = cosElevation / (sinElevation * pixelsPerMetre); // towards the eye
-        return -cosElevation * up / sinElevation - 0.5f * perRow >= towardEye;
+            return rowUp(row) < 0.0f; // seen level: below the ground line is ground
+        const float centre = groundTowardEye(row);
+        return !(towardEye >
+                 gpu::farMeshDepthLimit(centre, centre, centre, groundTowardEye(row - 1), groundTowardEye(row + 1)));
     }
 };
 
