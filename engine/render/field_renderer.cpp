@@ -675,8 +675,9 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     recordCullPass(ctx, r, cmd);
     markPass(timer, cmd, "cull");
     recordLightPass(ctx, r, cmd);
-    recordGroundLightMap(ctx, r, cmd);
     markPass(timer, cmd, "light");
+    recordGroundLightMap(ctx, r, cmd);
+    markPass(timer, cmd, "groundMap");
     recordSkyBlend(ctx, r, cmd);
     markPass(timer, cmd, "sky");
     recordDrawPass(ctx, r, cmd, t);

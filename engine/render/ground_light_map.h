@@ -23,15 +23,23 @@
 
 namespace meadow {
 
-// A texel about every 8 cm over every instance's ground grid (16 to 2048 a side), and its
-// rectangle as GpuFrame::groundMap: x, y the lowest world x and z, z, w 1 / the size in x and z
-// (all zero when no clump casts on the ground: then the map is one open-ground texel).
+// The gather's cost is its list entries, about one per texel that each grid covers: the texel is
+// 8 cm, or as much coarser as keeps the lists near this many entries. The default field lists
+// 5.0 M at 8 cm; a million clumps would list 16 M at the 2048 texels' cap, 0.12 ms on an H200, and
+// take the frames that run the light pass past the compute passes' 0.25 ms (docs/BENCHMARKS.md).
+inline constexpr uint64_t kGroundMapEntryBudget = uint64_t(4) << 20;
+
+// A texel about every 8 cm over every instance's ground grid (16 to 2048 a side), coarser where
+// the grids would list more than entryBudget entries, and its rectangle as GpuFrame::groundMap:
+// x, y the lowest world x and z, z, w 1 / the size in x and z (all zero when no clump casts on the
+// ground: then the map is one open-ground texel).
 struct GroundLightMapLayout {
     VkExtent2D size{1, 1};
     glm::vec4 rect{0.0f};
 };
 GroundLightMapLayout groundLightMapLayout(std::span<const FieldClump> clumps,
-                                          std::span<const gpu::GpuInstance> instances);
+                                          std::span<const gpu::GpuInstance> instances,
+                                          uint64_t entryBudget = kGroundMapEntryBudget);
 
 // One instance laying its clump's grid on the map. A point of the map in texels (texel (x, y)'s
 // centre is (x + 1/2, y + 1/2)) lies at grid coordinates (points - 1) / 2 + toGrid (at - base):

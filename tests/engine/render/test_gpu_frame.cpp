@@ -33,13 +33,14 @@ TEST_F(Gpu, TimestampsBracketEveryPass) {
     Offscreen offscreen = createOffscreen(*context, {32, 32});
     Camera camera;
     FrameTimings t = renderOffscreenFrame(*context, renderer, offscreen, frameState(camera, 32, 32));
-    ASSERT_EQ(t.gpu.size(), 6u);
+    ASSERT_EQ(t.gpu.size(), 7u);
     EXPECT_EQ(t.gpu[0].label, "animate");
     EXPECT_EQ(t.gpu[1].label, "cull");
     EXPECT_EQ(t.gpu[2].label, "light");
-    EXPECT_EQ(t.gpu[3].label, "sky");
-    EXPECT_EQ(t.gpu[4].label, "draw");
-    EXPECT_EQ(t.gpu[5].label, "tonemap");
+    EXPECT_EQ(t.gpu[3].label, "groundMap");
+    EXPECT_EQ(t.gpu[4].label, "sky");
+    EXPECT_EQ(t.gpu[5].label, "draw");
+    EXPECT_EQ(t.gpu[6].label, "tonemap");
     for (const PassTime& p : t.gpu) {
         EXPECT_GE(p.milliseconds, 0.0) << p.label;
         EXPECT_LT(p.milliseconds, 10000.0) << p.label;
@@ -423,7 +424,8 @@ TEST_F(Gpu, TimestampsBracketTheFarFieldsPasses) {
         labels.push_back(p.label);
         EXPECT_GE(p.milliseconds, 0.0) << p.label;
     }
-    EXPECT_EQ(labels, (std::vector<std::string>{"animate", "cull", "light", "sky", "draw", "farSplat", "tonemap"}));
+    EXPECT_EQ(labels, (std::vector<std::string>{"animate", "cull", "light", "groundMap", "sky", "draw", "farSplat",
+                                                "tonemap"}));
     destroyOffscreen(*context, offscreen);
     destroyFieldRenderer(*context, renderer);
 }

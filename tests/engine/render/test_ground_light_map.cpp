@@ -152,6 +152,36 @@ TEST(GroundLightMap, EveryTexelListsTheCellOfEveryGridCoveringItInInstanceOrder)
     EXPECT_EQ(covered, lists.entries.size());
 }
 
+// The gather's cost is its entries: the texel is 8 cm while the grids list fewer than the budget,
+// and coarser, as the grids' area says, where they would list more, so that they list about the
+// budget.
+TEST(GroundLightMap, TheTexelGrowsToKeepTheListsNearTheirEntryBudget) {
+    const Field f = scatteredField(200, 11);
+    auto entries = [&](const GroundLightMapLayout& layout) {
+        return groundLightMapLists(groundCasters(f.clumps, f.instances, layout, f.mirrorNormal), layout.size)
+            .entries.size();
+    };
+    // The default budget: 8 cm texels (the size is the extent over 8 cm, rounded down).
+    ASSERT_GT(f.layout.rect.z, 0.0f);
+    EXPECT_EQ(f.layout.size.width, uint32_t(1.0f / f.layout.rect.z / 0.08f));
+    EXPECT_EQ(f.layout.size.height, uint32_t(1.0f / f.layout.rect.w / 0.08f));
+    const size_t fine = entries(f.layout);
+    EXPECT_LT(fine, kGroundMapEntryBudget);
+    // A budget of a quarter of that: texels about twice as wide, and about the budget's entries.
+    const uint64_t budget = fine / 4;
+    const GroundLightMapLayout coarse = groundLightMapLayout(f.fieldClumps, f.instances, budget);
+    EXPECT_EQ(coarse.rect, f.layout.rect);
+    EXPECT_NEAR(double(coarse.size.width) / double(f.layout.size.width), 0.5, 0.05);
+    EXPECT_NEAR(double(coarse.size.height) / double(f.layout.size.height), 0.5, 0.05);
+    const double listed = double(entries(coarse)) / double(budget);
+    EXPECT_GT(listed, 0.8);
+    EXPECT_LT(listed, 1.25);
+    // A budget above the fine lists changes nothing.
+    const GroundLightMapLayout same = groundLightMapLayout(f.fieldClumps, f.instances, 4 * fine);
+    EXPECT_EQ(same.size.width, f.layout.size.width);
+    EXPECT_EQ(same.size.height, f.layout.size.height);
+}
+
 TEST(GroundLightMap, ReferenceMultipliesTheGridsCoveringATexel) {
     // Two unturned instances of a 2-point grid whose ratios are 0.5 and 0.25 everywhere, over each
     // other: 0.125 where both lie, 1 far from them.
