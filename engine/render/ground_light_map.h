@@ -25,8 +25,9 @@ namespace meadow {
 
 // The gather's cost is its list entries, about one per texel that each grid covers: the texel is
 // 8 cm, or as much coarser as keeps the lists near this many entries. The default field lists
-// 5.0 M at 8 cm; a million clumps would list 16 M at the 2048 texels' cap, 0.12 ms on an H200, and
-// take the frames that run the light pass past the compute passes' 0.25 ms (docs/BENCHMARKS.md).
+// 5.0 M at 8 cm (4.2 M at 8.7 cm under this budget); a million clumps listed about 9.6 M at the
+// 2048 texels' cap, a 0.12 ms gather on an H200 that took the frames running the light pass past
+// the compute passes' 0.25 ms (docs/BENCHMARKS.md, 2026-11-28).
 inline constexpr uint64_t kGroundMapEntryBudget = uint64_t(4) << 20;
 
 // A texel about every 8 cm over every instance's ground grid (16 to 2048 a side), coarser where
