@@ -11,9 +11,9 @@
 //   -> tonemap.comp, or with a far field far_resolve.comp (the splats' winners resolved against the
 //      meshes' depth, then the tone map, in one pass).
 //
-// GPU timestamps bracket "animate", "cull", "light", "groundMap" (the ground light map's gather), "sky",
-// "draw", "farSplat" (with a far field: the
-// visibility buffer's fill and the splat pass) and "tonemap" (with a far field, the resolve pass).
+// GPU timestamps bracket "animate", "cull", "light", "groundMap" (the ground light map's gather),
+// "sky", "draw", "farSplat" (with a far field: the visibility buffer's fill and the splat pass) and
+// "tonemap" (with a far field, the resolve pass).
 #pragma once
 
 #include <array>
