@@ -13,10 +13,10 @@ GroundLightMapLayout groundLightMapLayout(std::span<const FieldClump> clumps,
     glm::vec2 low(1e30f), high(-1e30f);
     double gridArea = 0.0; // m², over every grid: a grid covers about its area / texel² texels
     for (const gpu::GpuInstance& inst : instances) {
-        const float side = clumps[inst.mesh].groundSize * std::abs(inst.positionScale.w);
-        const float reach = 0.75f * side; // > half the diagonal
         if (clumps[inst.mesh].groundResolution < 2)
             continue;
+        const float side = clumps[inst.mesh].groundSize * std::abs(inst.positionScale.w);
+        const float reach = 0.75f * side; // > half the diagonal
         gridArea += double(side) * double(side);
         low = glm::min(low, glm::vec2(inst.positionScale.x, inst.positionScale.z) - reach);
         high = glm::max(high, glm::vec2(inst.positionScale.x, inst.positionScale.z) + reach);
@@ -24,7 +24,8 @@ GroundLightMapLayout groundLightMapLayout(std::span<const FieldClump> clumps,
     GroundLightMapLayout map;
     if (low.x < high.x) {
         const glm::vec2 extent = high - low;
-        const float texel = std::max(0.08f, float(std::sqrt(gridArea / double(std::max<uint64_t>(entryBudget, 1)))));
+        const float texel =
+            std::max(kGroundMapFinestTexel, float(std::sqrt(gridArea / double(std::max<uint64_t>(entryBudget, 1)))));
         map.size = {std::clamp(uint32_t(extent.x / texel), 16u, 2048u),
                     std::clamp(uint32_t(extent.y / texel), 16u, 2048u)};
         map.rect = glm::vec4(low, 1.0f / extent.x, 1.0f / extent.y);

@@ -29,6 +29,7 @@ namespace meadow {
 // 2048 texels' cap, a 0.12 ms gather on an H200 that took the frames running the light pass past
 // the compute passes' 0.25 ms (docs/BENCHMARKS.md, 2026-11-28).
 inline constexpr uint64_t kGroundMapEntryBudget = uint64_t(4) << 20;
+inline constexpr float kGroundMapFinestTexel = 0.08f; // m
 
 // A texel about every 8 cm over every instance's ground grid (16 to 2048 a side), coarser where
 // the grids would list more than entryBudget entries, and its rectangle as GpuFrame::groundMap:

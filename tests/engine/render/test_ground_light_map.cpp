@@ -163,8 +163,8 @@ TEST(GroundLightMap, TheTexelGrowsToKeepTheListsNearTheirEntryBudget) {
     };
     // The default budget: 8 cm texels (the size is the extent over 8 cm, rounded down).
     ASSERT_GT(f.layout.rect.z, 0.0f);
-    EXPECT_EQ(f.layout.size.width, uint32_t(1.0f / f.layout.rect.z / 0.08f));
-    EXPECT_EQ(f.layout.size.height, uint32_t(1.0f / f.layout.rect.w / 0.08f));
+    EXPECT_EQ(f.layout.size.width, uint32_t(1.0f / f.layout.rect.z / kGroundMapFinestTexel));
+    EXPECT_EQ(f.layout.size.height, uint32_t(1.0f / f.layout.rect.w / kGroundMapFinestTexel));
     const size_t fine = entries(f.layout);
     EXPECT_LT(fine, kGroundMapEntryBudget);
     // A budget of a quarter of that: texels about twice as wide, and about the budget's entries.
