@@ -9,6 +9,7 @@
 #include "lod_select.h"
 #include "draw_instance.h"
 #include "far_splat.h"
+#include "near_raster.h"
 
 layout(local_size_x = kCullGroupSize) in;
 
@@ -26,10 +27,31 @@ layout(set = 0, binding = 8, std430) writeonly buffer DrawInstances { GpuDrawIns
 // draw of a crossfade from LOD 4) and the samples it draws; the splat pass's dispatch.
 layout(set = 0, binding = 9, std430) writeonly buffer FarList { uvec2 farList[]; };
 layout(set = 0, binding = 10, std430) buffer FarDispatch { GpuFarDispatch farDispatch; };
+// The near raster (near_raster.h): the LOD draws it takes, its dispatch and where its meshes lie.
+layout(set = 0, binding = 11, std430) writeonly buffer NearList { uvec4 nearList[]; };
+layout(set = 0, binding = 12, std430) buffer NearDispatch { GpuNearDispatch nearDispatch; };
+layout(set = 0, binding = 13, std430) readonly buffer NearMeshes { uvec4 nearMeshes[]; };
 
 void append(uint bucket, uint entry) {
     uint slot = atomicAdd(draws[bucket].instanceCount, 1u);
     visible[draws[bucket].firstInstance + slot] = entry;
+}
+
+// An instance's mesh LOD drawn by the near raster instead of the mesh pass (one more workgroup for
+// it), or by the mesh pass when the near raster's vertex buffer has no room left for its vertices.
+void appendNearOrMesh(uint bucket, uint entry, int sub) {
+    uvec4 mesh = nearMeshes[bucket];
+    uint start = atomicAdd(nearDispatch.vertices, mesh.y);
+    if (start + mesh.y > kNearMaxVertices || start + mesh.y < start) {
+        append(bucket, entry);
+        return;
+    }
+    uint slot = atomicAdd(nearDispatch.count, 1u);
+    nearList[slot] = uvec4(entry, bucket, start, uint(sub));
+    if (slot < kNearMaxGroups)
+        atomicAdd(nearDispatch.groupsX, 1u);
+    atomicAdd(stats.nearInstances, 1u);
+    atomicAdd(stats.nearTriangles, mesh.w / 3u);
 }
 
 // A far instance: as many of its clump's samples as its projected surface wants; one more
@@ -96,10 +118,23 @@ void main() {
         // Below the far radius the far field replaces the last mesh LOD (only when the frame has one).
         bool far = c.lod == kLodFar, farFade = c.fadeLod == kLodFar && !far;
         uint lod = min(c.lod, lodCount - 1u), fadeLod = min(c.fadeLod, lodCount - 1u);
-        if (!far)
-            append(first + lod, index);
-        if (fadeLod != lod && !farFade)
-            append(first + fadeLod, index | kLodFadeEntryBit);
+        // The middle LODs go to the near raster when it is on, the instance is small enough on the
+        // screen and its sphere lies wholly in front of the near plane (frustum plane 4).
+        precise float nearDistance = dot(frame.frustumPlanes[4].xyz, center) + frame.frustumPlanes[4].w;
+        bool nearRaster = (frame.motion.w & kFrameNearRaster) != 0u && screenRadius <= kNearMaxRadius &&
+                          nearDistance > radius;
+        if (!far) {
+            if (nearRaster && lod >= 1u)
+                appendNearOrMesh(first + lod, index, nearSubpixelFor(screenRadius));
+            else
+                append(first + lod, index);
+        }
+        if (fadeLod != lod && !farFade) {
+            if (nearRaster && fadeLod >= 1u)
+                appendNearOrMesh(first + fadeLod, index | kLodFadeEntryBit, nearSubpixelFor(screenRadius));
+            else
+                append(first + fadeLod, index | kLodFadeEntryBit);
+        }
         if ((far || farFade) && (frame.motion.w & kFrameFarAsLod0) != 0u) {
             // The far field's reference: the instance at LOD 0 in its place, marked for the LOD view.
             append(first, (farFade ? index | kLodFadeEntryBit : index) | kLodFarMeshEntryBit);

@@ -27,6 +27,8 @@ const char* const kFieldOptionsHelp =
   --lod-tolerance PX    the screen-space error at which each coarser LOD takes over: its RMS
                         distance from the full mesh, in pixels (default 0.3; 0.05 to 4). Larger
                         is faster and coarser: the switch radii scale with it
+  --near-raster         LOD 1 and the coarser mesh LODs of instances below 192 px drawn triangle
+                        by triangle in compute passes instead of the graphics pipeline
 )";
 
 void addFieldOptions(CommandSpec& spec) {
@@ -34,6 +36,7 @@ void addFieldOptions(CommandSpec& spec) {
     spec.switchOptions.insert("--lod0");
     spec.switchOptions.insert("--far-lod0");
     spec.valueOptions.insert("--lod-tolerance");
+    spec.switchOptions.insert("--near-raster");
 }
 
 FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
@@ -58,12 +61,17 @@ FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
         throw Error("meadow " + args.command +
                     ": --far-lod0 draws the far field's clumps as LOD 0 meshes: it needs the far field, "
                     "which --far-radius 0 turns off");
+    options.nearRaster = args.has("--near-raster");
+    if (options.lod0 && options.nearRaster)
+        throw Error("meadow " + args.command +
+                    ": --lod0 draws every clump at full detail, so no middle LOD is drawn: leave out --near-raster");
     return options;
 }
 
 void applyFieldOptions(const FieldOptions& options, std::vector<FieldClump>& clumps, FieldScenery& scenery) {
     scenery.lod.farRadius = options.farRadius;
     scenery.farAsLod0 = options.farLod0;
+    scenery.nearRaster = options.nearRaster;
     if (options.lod0) {
         scenery.lodCount = 1;
         for (FieldClump& clump : clumps)

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "far_splat.h"
+#include "near_raster.h"
 #include "render/cull_reference.h"
 #include "vk/context.h"
 #include "wind_field.h"
@@ -26,7 +27,10 @@ struct CpuDriver {
     // list, the far list and the far field's dispatch, in this order.
     Buffer staging;
     size_t recordsAt = 0, drawsAt = 0, statsAt = 0, visibleAt = 0, farListAt = 0, farDispatchAt = 0;
+    size_t nearListAt = 0, nearDispatchAt = 0;
+    std::vector<glm::uvec4> nearMeshes;      // per bucket, as the near raster reads them (near_raster.h)
     uint32_t farEntries = 0;                 // written this frame
+    uint32_t nearEntries = 0;                // written this frame
     uint32_t visibleEntries = 0;             // written this frame
     std::vector<VkBufferCopy> visibleCopies; // this frame's used part of each bucket's range
     std::vector<VkBufferCopy> recordCopies;  // this frame's visible instances' records, in runs
@@ -61,7 +65,11 @@ void enableCpuDriver(Context& ctx, FieldRenderer& r, std::span<const FieldClump>
     d->visibleAt = d->statsAt + sizeof(gpu::GpuCullStats);
     d->farListAt = d->visibleAt + r.visibleList.size;
     d->farDispatchAt = d->farListAt + instances.size() * 2 * sizeof(uint32_t);
-    d->staging = createBuffer(ctx, d->farDispatchAt + sizeof(gpu::GpuFarDispatch), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+    d->nearMeshes.resize(r.meshCount);
+    readbackBuffer(ctx, r.nearMeshes, d->nearMeshes.data(), d->nearMeshes.size() * sizeof(glm::uvec4));
+    d->nearListAt = d->farDispatchAt + sizeof(gpu::GpuFarDispatch);
+    d->nearDispatchAt = d->nearListAt + (r.nearRasterOn ? instances.size() * 2 * sizeof(glm::uvec4) : 0);
+    d->staging = createBuffer(ctx, d->nearDispatchAt + sizeof(gpu::GpuNearDispatch), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                               MemoryUse::Upload);
     r.cpuDriver = std::move(d);
 }
@@ -134,6 +142,25 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
         ++stats.farInstances;
         stats.farSamples += count;
     };
+    // The near raster's list, as cull.comp's appendNearOrMesh writes it: the entry, its bucket and
+    // its vertices' place, or the mesh pass when they would not fit.
+    d.nearEntries = 0;
+    uint32_t nearVertices = 0;
+    auto appendNearOrMesh = [&](uint32_t bucket, uint32_t entry, int sub) {
+        const glm::uvec4 mesh = d.nearMeshes[bucket];
+        const uint32_t start = nearVertices;
+        nearVertices += mesh.y;
+        if (uint64_t(start) + mesh.y > gpu::kNearMaxVertices) {
+            append(bucket, entry);
+            return;
+        }
+        const glm::uvec4 item(entry, bucket, start, uint32_t(sub));
+        std::memcpy(hostWriteAt(ctx, d.staging, d.nearListAt + size_t(d.nearEntries) * sizeof item, sizeof item), &item,
+                    sizeof item);
+        ++d.nearEntries;
+        ++stats.nearInstances;
+        stats.nearTriangles += mesh.w / 3u;
+    };
     for (uint32_t i = 0; i < d.instances.size(); ++i) {
         ++stats.testedInstances;
         if (!instanceVisible(frame, d.instances[i]))
@@ -150,10 +177,19 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
         record(i, choice.x, true);
         const bool far = choice.lod == gpu::kLodFar, farFade = choice.fadeLod == gpu::kLodFar && !far;
         const uint32_t lod = std::min(choice.lod, d.lodCount - 1), fade = std::min(choice.fadeLod, d.lodCount - 1);
-        if (!far)
-            append(first + lod, i);
-        if (fade != lod && !farFade)
-            append(first + fade, i | gpu::kLodFadeEntryBit);
+        const int nearSub = nearRasterReference(frame, d.instances[i]);
+        if (!far) {
+            if (nearSub > 0 && lod >= 1)
+                appendNearOrMesh(first + lod, i, nearSub);
+            else
+                append(first + lod, i);
+        }
+        if (fade != lod && !farFade) {
+            if (nearSub > 0 && fade >= 1)
+                appendNearOrMesh(first + fade, i | gpu::kLodFadeEntryBit, nearSub);
+            else
+                append(first + fade, i | gpu::kLodFadeEntryBit);
+        }
         if ((far || farFade) && farAsLod0) {
             append(first, (farFade ? i | gpu::kLodFadeEntryBit : i) | gpu::kLodFarMeshEntryBit);
             ++stats.farInstances;
@@ -164,6 +200,9 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
     const uint32_t farGroups = (d.farEntries + gpu::kFarInstancesPerGroup - 1) / gpu::kFarInstancesPerGroup;
     const gpu::GpuFarDispatch dispatch{std::min(farGroups, gpu::kFarMaxGroups), 1u, 1u, d.farEntries};
     std::memcpy(hostWriteAt(ctx, d.staging, d.farDispatchAt, sizeof dispatch), &dispatch, sizeof dispatch);
+    const gpu::GpuNearDispatch nearDispatch{
+        std::min(d.nearEntries, gpu::kNearMaxGroups), 1u, 1u, d.nearEntries, nearVertices, 0u, 0u, 0u};
+    std::memcpy(hostWriteAt(ctx, d.staging, d.nearDispatchAt, sizeof nearDispatch), &nearDispatch, sizeof nearDispatch);
     d.visibleCopies.clear();
     for (size_t m = 0; m < d.drawTemplate.size(); ++m)
         if (draws[m].instanceCount > 0)
@@ -189,6 +228,12 @@ void cpuDriverRecordUploads(CpuDriver& d, const FieldRenderer& r, VkCommandBuffe
     }
     VkBufferCopy farDispatch{d.farDispatchAt, 0, sizeof(gpu::GpuFarDispatch)};
     vkCmdCopyBuffer(cmd, from, r.farDispatch.buffer, 1, &farDispatch);
+    if (d.nearEntries > 0) {
+        VkBufferCopy nearList{d.nearListAt, 0, VkDeviceSize(d.nearEntries) * sizeof(glm::uvec4)};
+        vkCmdCopyBuffer(cmd, from, r.nearList.buffer, 1, &nearList);
+    }
+    VkBufferCopy nearDispatch{d.nearDispatchAt, 0, sizeof(gpu::GpuNearDispatch)};
+    vkCmdCopyBuffer(cmd, from, r.nearDispatch.buffer, 1, &nearDispatch);
 }
 
 const std::vector<gpu::GpuMotionState>& cpuDriverStates(const CpuDriver& d) {

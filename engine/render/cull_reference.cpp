@@ -1,5 +1,7 @@
 #include "render/cull_reference.h"
 
+#include "near_raster.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -38,6 +40,18 @@ float visibilityMargin(const gpu::GpuFrame& frame, const gpu::GpuInstance& insta
     for (int i = 0; i < 6; ++i)
         margin = std::min(margin, planeDistance(frame.frustumPlanes[i], s.center) + s.radius);
     return margin;
+}
+
+int nearRasterReference(const gpu::GpuFrame& frame, const gpu::GpuInstance& instance) {
+    if ((frame.motion.w & gpu::kFrameNearRaster) == 0u)
+        return 0;
+    Sphere s = boundingSphere(instance);
+    const glm::vec3 d = s.center - glm::vec3(frame.cameraPosition);
+    const float dist = std::max(std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), 1e-3f);
+    const float screenRadius = s.radius * frame.lodScreen.x / dist;
+    const bool taken =
+        screenRadius <= gpu::kNearMaxRadius && planeDistance(frame.frustumPlanes[4], s.center) > s.radius;
+    return taken ? gpu::nearSubpixelFor(screenRadius) : 0;
 }
 
 gpu::GpuLodChoice lodReference(const gpu::GpuFrame& frame, const gpu::GpuInstance& instance, uint32_t index,

@@ -112,6 +112,11 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     j["farRadius"] = renderer.farField ? renderer.lodParams.farRadius : 0.0f;
     j["instancesFar"] = stats.farInstances;
     j["splatsPerFrame"] = stats.farSamples;
+    // The near raster (--near-raster): the LOD draws it took from the mesh pass and their triangles
+    // (not in trianglesPerFrame).
+    j["nearRaster"] = renderer.nearRasterOn;
+    j["nearRasterDraws"] = stats.nearInstances;
+    j["nearRasterTriangles"] = stats.nearTriangles;
     if (options.lastFrameRgba && cpuDriven == options.cpuDriven)
         *options.lastFrameRgba = readLdrPixels(ctx, offscreen.targets);
     destroyOffscreen(ctx, offscreen);

@@ -99,6 +99,7 @@ uint32_t packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount,
         }
         p.indices.insert(p.indices.end(), lod.indices.begin(), lod.indices.end());
         p.meshTriangles.push_back(uint32_t(lod.indices.size() / 3));
+        p.meshVertices.push_back(uint32_t(lod.vertices.size()));
     }
     return lastLodBase;
 }

@@ -27,6 +27,7 @@ struct FieldPacking {
     std::vector<uint32_t> lightVertices;           // per clump: vertices x variants (light.comp threads)
     std::vector<gpu::GpuDrawIndexedCommand> draws; // per draw bucket (clump-major), instance counts 0
     std::vector<uint32_t> meshTriangles;           // per draw bucket
+    std::vector<uint32_t> meshVertices;            // per draw bucket: its GpuLodVertex from draws' vertexOffset
     std::vector<uint32_t> drawCapacity;            // per draw bucket: the instances its visible range holds
     uint32_t visibleCount = 0;                     // the visible list's length: every bucket's range
     std::vector<gpu::GpuMotionState> states;       // per instance: where its walk starts

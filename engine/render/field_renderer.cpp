@@ -1,6 +1,7 @@
 #include "render/field_renderer.h"
 
 #include "far_splat.h"
+#include "near_raster.h"
 #include "render/draw_ranges.h"
 #include "render/field_packing.h"
 #include "render/ground_light_map.h"
@@ -144,6 +145,8 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     const uint32_t farLanes = scenery.farLanes > 0 ? scenery.farLanes : farSplatLanesFor(ctx.properties);
     r.farSplat = createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4), gpu::kFarInstancesPerGroup * farLanes);
     r.farResolve = createComputePipeline(ctx, "far_resolve.comp");
+    r.nearVertices = createComputePipeline(ctx, "near_vertices.comp", sizeof(glm::vec4));
+    r.nearRaster = createComputePipeline(ctx, "near_raster.comp");
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);
     r.windAzimuth = std::atan2(wind.x, wind.y); // light/sh.h: from +z towards +x
@@ -176,7 +179,8 @@ void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size
         uint64_t(mapSize.width) * mapSize.height * 8 + uint64_t(day.imageWidth) * day.imageHeight * 8 +
         scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex) + scenery.terrain.indices.size() * sizeof(uint32_t) +
         p.farSamples.size() * sizeof(gpu::GpuFarSample) + uint64_t(instanceCount) * 8 + sizeof(gpu::GpuFarDispatch) +
-        ground.texelStart.size() * sizeof(uint32_t) + ground.entries.size() * sizeof(glm::uvec2);
+        ground.texelStart.size() * sizeof(uint32_t) + ground.entries.size() * sizeof(glm::uvec2) +
+        (scenery.nearRaster ? uint64_t(gpu::kNearMaxVertices) * 32 + uint64_t(instanceCount) * 32 : 0);
     checkFieldMemory(ctx, neededBytes,
                      "the field (" + std::to_string(instanceCount) + " instances of " + std::to_string(clumpCount) +
                          " meshes)");
@@ -214,7 +218,8 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     deviceBuffer(r.skyData, skyData.data(), skyData.size() * sizeof(float));
     r.indices = createBuffer(ctx, p.indices.size() * sizeof(uint32_t),
                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT, // read back by tests (draw_ranges.h)
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | // read back by tests (draw_ranges.h)
+                                 texels,                            // the near raster
                              MemoryUse::Device);
     uploadToBuffer(ctx, r.indices, p.indices.data(), r.indices.size);
     VkDeviceSize drawBytes = p.draws.size() * sizeof(gpu::GpuDrawIndexedCommand);
@@ -226,13 +231,16 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     deviceBuffer(r.visibleList, nullptr, size_t(p.visibleCount) * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.farSamples, p.farSamples.data(), p.farSamples.size() * sizeof(gpu::GpuFarSample),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
-    if (r.farField) {
+    if (r.farField)
         r.farSampleTexels =
             createTexelBufferView(ctx, r.farSamples, VK_FORMAT_R32G32B32A32_UINT, 16, "the far samples");
+    if (r.farField || r.nearRasterOn) {
         r.lodVertexTexels =
             createTexelBufferView(ctx, r.lodVertices, VK_FORMAT_R32G32B32A32_UINT, 16, "the LOD vertices");
         r.motionTexels = createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32_SFLOAT, 4, "the motion data");
     }
+    if (r.nearRasterOn)
+        r.indexTexels = createTexelBufferView(ctx, r.indices, VK_FORMAT_R32_UINT, 4, "the LOD meshes' indices");
     r.vertexLightTexels =
         createTexelBufferView(ctx, r.vertexLight, VK_FORMAT_R32G32B32A32_UINT, 16, "the vertex light");
     deviceBuffer(r.groundTexelStart, ground.texelStart.data(), ground.texelStart.size() * sizeof(uint32_t), texels);
@@ -246,6 +254,23 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     deviceBuffer(r.farList, nullptr, instances.size() * 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.farDispatch, nullptr, sizeof(gpu::GpuFarDispatch),
                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    // The near raster (near_raster.h): an instance's two LOD draws while it crossfades, at most two
+    // entries each; where each bucket's mesh lies (read by the cull pass, so always there).
+    std::vector<glm::uvec4> nearMeshes(p.draws.size());
+    for (size_t b = 0; b < p.draws.size(); ++b)
+        nearMeshes[b] = glm::uvec4(uint32_t(p.draws[b].vertexOffset), p.meshVertices[b], p.draws[b].firstIndex,
+                                   p.draws[b].indexCount);
+    deviceBuffer(r.nearMeshes, nearMeshes.data(), nearMeshes.size() * sizeof(glm::uvec4),
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT); // read back by the CPU-driven path
+    deviceBuffer(r.nearList, nullptr, r.nearRasterOn ? instances.size() * 2 * sizeof(glm::uvec4) : 0,
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.nearDispatch, nullptr, sizeof(gpu::GpuNearDispatch),
+                 VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.nearShaded, nullptr, r.nearRasterOn ? size_t(gpu::kNearMaxVertices) * 2 * sizeof(glm::uvec4) : 0,
+                 texels);
+    if (r.nearRasterOn)
+        r.nearShadedTexels =
+            createTexelBufferView(ctx, r.nearShaded, VK_FORMAT_R32G32B32A32_UINT, 16, "the near raster's vertices");
     deviceBuffer(r.stats, nullptr, sizeof(gpu::GpuCullStats), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     r.statsReadback =
         createBuffer(ctx, sizeof(gpu::GpuCullStats) + drawBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
@@ -280,6 +305,7 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
     r.farDensity = scenery.farDensity;
     r.farAsLod0 = scenery.farAsLod0;
     r.farField = scenery.lod.farRadius > 0.0f;
+    r.nearRasterOn = scenery.nearRaster && r.lodCount > 1;
     r.skyDay = scenery.sky;
     createPipelines(ctx, r, scenery);
 
@@ -310,19 +336,20 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
 
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.skyBlend, &r.ground, &r.instance,
-                        &r.groundMap, &r.farSplat, &r.farResolve})
+                        &r.groundMap, &r.farSplat, &r.farResolve, &r.nearVertices, &r.nearRaster})
         destroyPipeline(ctx, *p);
     for (VkBufferView* view : {&r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.vertexLightTexels,
-                               &r.groundTexelStartTexels, &r.groundEntryTexels})
+                               &r.groundTexelStartTexels, &r.groundEntryTexels, &r.indexTexels, &r.nearShadedTexels})
         if (*view) {
             vkDestroyBufferView(ctx.device, *view, nullptr);
             *view = VK_NULL_HANDLE;
         }
-    for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,         &r.drawInstances,
-                      &r.clumps,        &r.lodVertices, &r.indices,       &r.motionData,       &r.motionGraph,
-                      &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,     &r.drawCommandTemplate,
-                      &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices,  &r.terrainIndices,
-                      &r.farSamples,    &r.farList,     &r.farDispatch,   &r.groundTexelStart, &r.groundEntries})
+    for (Buffer* b : {&r.frameUniforms, &r.instances,    &r.motionStates,  &r.lodState,         &r.drawInstances,
+                      &r.clumps,        &r.lodVertices,  &r.indices,       &r.motionData,       &r.motionGraph,
+                      &r.transfer,      &r.vertexLight,  &r.skyData,       &r.drawCommands,     &r.drawCommandTemplate,
+                      &r.visibleList,   &r.stats,        &r.statsReadback, &r.terrainVertices,  &r.terrainIndices,
+                      &r.farSamples,    &r.farList,      &r.farDispatch,   &r.groundTexelStart, &r.groundEntries,
+                      &r.nearList,      &r.nearDispatch, &r.nearMeshes,    &r.nearShaded})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     destroyImage(ctx, r.groundLight);
@@ -338,6 +365,11 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     if (r.skySampler)
         vkDestroySampler(ctx.device, r.skySampler, nullptr);
     r = FieldRenderer{};
+}
+
+// The near raster runs on both paths: the CPU-driven one uploads its list and dispatch (cpu_driver.h).
+static bool nearRuns(const FieldRenderer& r) {
+    return r.nearRasterOn;
 }
 
 gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
@@ -368,8 +400,9 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
     uint32_t steps = 0;
     if (r.lastTick >= 0 && tick > r.lastTick)
         steps = uint32_t(std::min<int64_t>(tick - r.lastTick, gpu::kMaxMotionStepsPerFrame));
-    f.motion = gpu::uvec4(uint32_t(tick - int64_t(steps) + 1), steps, state.debugView,
-                          far && r.farAsLod0 ? gpu::kFrameFarAsLod0 : 0u);
+    f.motion =
+        gpu::uvec4(uint32_t(tick - int64_t(steps) + 1), steps, state.debugView,
+                   (far && r.farAsLod0 ? gpu::kFrameFarAsLod0 : 0u) | (nearRuns(r) ? gpu::kFrameNearRaster : 0u));
     f.counts.z = uint32_t(tick);
 
     // Sky: the two frames of the day around the hour; the sun from them; exposure from the
@@ -455,10 +488,11 @@ void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
 
 namespace {
 
-// The far field runs on both paths: the CPU-driven one uploads the far list and its dispatch that
-// the cull pass would write (cpu_driver.h).
+// The visibility buffer and the resolve run with the far field or the near raster. The far field runs
+// on both paths: the CPU-driven one uploads the far list and its dispatch that the cull pass would
+// write (cpu_driver.h).
 bool farRuns(const FieldRenderer& r) {
-    return r.farField;
+    return r.farField || nearRuns(r);
 }
 
 void markPass(GpuTimer* timer, VkCommandBuffer cmd, const char* pass) {
@@ -485,6 +519,9 @@ void recordReset(FieldRenderer& r, VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, r.farDispatch.buffer, 0, sizeof(uint32_t), 0);
         vkCmdFillBuffer(cmd, r.farDispatch.buffer, sizeof(uint32_t), 2 * sizeof(uint32_t), 1);
         vkCmdFillBuffer(cmd, r.farDispatch.buffer, 3 * sizeof(uint32_t), sizeof(uint32_t), 0);
+        vkCmdFillBuffer(cmd, r.nearDispatch.buffer, 0, sizeof(uint32_t), 0);
+        vkCmdFillBuffer(cmd, r.nearDispatch.buffer, sizeof(uint32_t), 2 * sizeof(uint32_t), 1);
+        vkCmdFillBuffer(cmd, r.nearDispatch.buffer, 3 * sizeof(uint32_t), 2 * sizeof(uint32_t), 0);
     }
 }
 
@@ -506,7 +543,7 @@ void recordCullPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
         return;
     bindPipeline(ctx, cmd, r.cull,
                  {r.frameUniforms, r.instances, r.drawCommands, r.visibleList, r.stats, r.lodState, r.clumps,
-                  r.motionStates, r.drawInstances, r.farList, r.farDispatch});
+                  r.motionStates, r.drawInstances, r.farList, r.farDispatch, r.nearList, r.nearDispatch, r.nearMeshes});
     dispatchCovering(cmd, r.cull, r.instanceCount);
 }
 
@@ -612,7 +649,7 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
 // The far field (far_splat.h): the visibility buffer emptied and every far instance's samples
 // splatted into it. The winners are resolved against the meshes' depth by the tone map pass
 // (far_resolve.comp), which reads the depth in SHADER_READ_ONLY layout and the HDR image in GENERAL.
-void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t) {
+void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const RenderTargets& t, GpuTimer* timer) {
     imageBarrier(cmd, t.depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, access::kDepthAttachment,
                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, access::kComputeSampledRead,
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
@@ -622,6 +659,28 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
     barrier(cmd, access::kComputeRead, access::kTransferWrite);
     vkCmdFillBuffer(cmd, t.farVisibility.buffer, 0, VK_WHOLE_SIZE, gpu::kFarEmpty);
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
+    if (nearRuns(r)) {
+        // Every vertex of the listed draws moved and lit once, then their triangles drawn.
+        bindPipeline(ctx, cmd, r.nearVertices,
+                     {r.frameUniforms, r.nearList, r.nearDispatch, r.drawInstances, r.nearMeshes,
+                      Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), r.nearShaded});
+        pushConstants(ctx, cmd, r.nearVertices, &r.mirrorNormal, sizeof(glm::vec4));
+        vkCmdDispatchIndirect(cmd, r.nearDispatch.buffer, 0);
+        markPass(timer, cmd, "nearVertices");
+        barrier(cmd, access::kComputeWrite, access::kComputeSampledRead);
+        bindPipeline(ctx, cmd, r.nearRaster,
+                     {r.frameUniforms, r.nearList, r.nearDispatch, r.drawInstances, r.clumps, r.nearMeshes,
+                      Binding(r.indexTexels), Binding(r.nearShadedTexels),
+                      Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.atlasSampler),
+                      t.farVisibility});
+        vkCmdDispatchIndirect(cmd, r.nearDispatch.buffer, 0);
+        markPass(timer, cmd, "nearRaster");
+        if (!r.farField)
+            return;
+        // Both passes merge into the visibility buffer with atomics, in any order; the barrier
+        // only orders the two dispatches' writes for the validation layer's hazard tracking.
+        barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite);
+    }
     bindPipeline(ctx, cmd, r.farSplat,
                  {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, Binding(r.farSampleTexels),
                   Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), t.farVisibility});
@@ -683,8 +742,9 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     recordDrawPass(ctx, r, cmd, t);
     markPass(timer, cmd, "draw");
     if (farRuns(r)) {
-        recordFarPass(ctx, r, cmd, t);
-        markPass(timer, cmd, "farSplat");
+        recordFarPass(ctx, r, cmd, t, timer);
+        if (r.farField)
+            markPass(timer, cmd, "farSplat");
     }
     recordTonemapPass(ctx, r, cmd, t);
     markPass(timer, cmd, "tonemap"); // with the far field, the resolve pass (far_resolve.comp)
@@ -699,6 +759,8 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     out.testedInstances = s.testedInstances;
     out.farInstances = s.farInstances;
     out.farSamples = s.farSamples;
+    out.nearInstances = s.nearInstances;
+    out.nearTriangles = s.nearTriangles;
     std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
     std::memcpy(draws.data(), static_cast<const char*>(r.statsReadback.mapped()) + sizeof(s),
                 draws.size() * sizeof(gpu::GpuDrawIndexedCommand));

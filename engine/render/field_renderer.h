@@ -94,6 +94,9 @@ struct FieldScenery {
     // Threads per far instance in the splat pass (gpu_types.h): a power of two up to
     // gpu::kFarMaxLanes; 0: the device's (farSplatLanesFor). The picture is the same with any.
     uint32_t farLanes = 0;
+    // The middle LODs (1 up to the last) of instances below gpu::kNearMaxRadius px drawn by the near
+    // raster (near_raster.h) instead of the mesh pass (--near-raster); the GPU-driven path only.
+    bool nearRaster = false;
     sky::SkyDay sky; // SH order 3; at least one frame
 };
 
@@ -134,6 +137,8 @@ struct FieldRenderer {
     Pipeline groundMap;
     Pipeline farSplat;
     Pipeline farResolve;
+    Pipeline nearVertices;
+    Pipeline nearRaster;
 
     Buffer frameUniforms; // host-written each frame: the only per-frame upload
     Buffer instances;
@@ -161,6 +166,14 @@ struct FieldRenderer {
     VkBufferView vertexLightTexels = VK_NULL_HANDLE;
     Buffer farList;     // per far instance this frame: (visible-list entry, samples to draw)
     Buffer farDispatch; // gpu::GpuFarDispatch: the splat pass's indirect dispatch, written by cull
+    // The near raster (near_raster.h): the LOD draws it takes this frame, its dispatch (both written
+    // by cull), where each bucket's mesh lies, and its shaded vertices.
+    Buffer nearList;
+    Buffer nearDispatch; // gpu::GpuNearDispatch
+    Buffer nearMeshes;
+    Buffer nearShaded;
+    VkBufferView indexTexels = VK_NULL_HANDLE; // the LOD meshes' indices, as the near raster reads them
+    VkBufferView nearShadedTexels = VK_NULL_HANDLE;
     Buffer stats;
     Buffer statsReadback;
 
@@ -194,6 +207,7 @@ struct FieldRenderer {
     float farDensity = gpu::kFarDefaultDensity;
     bool farAsLod0 = false;
     bool farField = false;               // lodParams.farRadius > 0: the splat and resolve passes run
+    bool nearRasterOn = false;           // FieldScenery::nearRaster (the resolve pass runs with it too)
     std::vector<uint32_t> meshTriangles; // per draw bucket
     std::vector<uint32_t> drawCapacity;  // per draw bucket: the instances its visible range holds
     uint64_t lodVertexCount = 0;
@@ -228,6 +242,8 @@ struct FieldStats {
     uint32_t testedInstances = 0;
     uint32_t farInstances = 0;            // drawn as the far field (a crossfading one counts here and in a LOD)
     uint32_t farSamples = 0;              // splats they drew
+    uint32_t nearInstances = 0;           // LOD draws the near raster took (a crossfading instance may have two)
+    uint64_t nearTriangles = 0;           // their triangles (not in trianglesDrawn)
     uint64_t trianglesDrawn = 0;          // instances + terrain + sky
     std::vector<uint32_t> visiblePerMesh; // per draw bucket; a crossfading instance counts in two
 };

@@ -95,6 +95,11 @@ static_assert(offsetof(GpuCullStats, visibleInstances) == 0);
 static_assert(offsetof(GpuCullStats, testedInstances) == 4);
 static_assert(offsetof(GpuCullStats, farInstances) == 8);
 static_assert(offsetof(GpuCullStats, farSamples) == 12);
-static_assert(sizeof(GpuCullStats) == 16);
+static_assert(offsetof(GpuCullStats, nearInstances) == 16);
+static_assert(offsetof(GpuCullStats, nearTriangles) == 20);
+static_assert(sizeof(GpuCullStats) == 32);
+static_assert(offsetof(GpuNearDispatch, count) == 12);
+static_assert(offsetof(GpuNearDispatch, vertices) == 16);
+static_assert(sizeof(GpuNearDispatch) == 32);
 
 } // namespace meadow::gpu

@@ -62,6 +62,8 @@ MEADOW_CONST kDebugViewNone = 0;
 MEADOW_CONST kDebugViewLod = 1;
 // GpuFrame::motion.w: the far field's instances are drawn as LOD 0 meshes, not splats (its reference).
 MEADOW_CONST kFrameFarAsLod0 = 1;
+// GpuFrame::motion.w: the middle LODs are drawn by the near raster (near_raster.h), not the mesh pass.
+MEADOW_CONST kFrameNearRaster = 2;
 
 // Per frame: the only data the CPU writes each frame (uniform buffer, set 0).
 struct GpuFrame {
@@ -174,8 +176,11 @@ struct GpuDrawIndexedCommand {
 struct GpuCullStats {
     uint visibleInstances;
     uint testedInstances;
-    uint farInstances; // drawn (in part, while crossfading) as the far field
-    uint farSamples;   // splats those instances draw
+    uint farInstances;  // drawn (in part, while crossfading) as the far field
+    uint farSamples;    // splats those instances draw
+    uint nearInstances; // LOD draws (an instance's one or two while crossfading) the near raster takes
+    uint nearTriangles; // the triangles of those draws
+    uint pad0, pad1;
 };
 
 // The splat pass's indirect dispatch (VkDispatchIndirectCommand) and the far list's length.
@@ -186,6 +191,16 @@ struct GpuFarDispatch {
     uint count; // far instances listed this frame
 };
 
+// The near raster's dispatches (near_raster.h): VkDispatchIndirectCommand, the near list's length and
+// the shaded vertices it holds in the near raster's vertex buffer.
+struct GpuNearDispatch {
+    uint groupsX;
+    uint groupsY;
+    uint groupsZ;
+    uint count;    // LOD draws listed this frame
+    uint vertices; // vertices asked for (the listed draws' and any that did not fit)
+    uint pad0, pad1, pad2;
+};
 #ifdef __cplusplus
 } // namespace meadow::gpu
 #endif

@@ -8,6 +8,7 @@
 #include "render/cpu_driver.h"
 #include "render/far_reference.h"
 #include "render/field_renderer.h"
+#include "render/near_reference.h"
 #include "render/offscreen.h"
 #include "render/render_targets.h"
 #include "sh_light.h"
@@ -428,4 +429,131 @@ TEST_F(Gpu, TimestampsBracketTheFarFieldsPasses) {
                                                 "tonemap"}));
     destroyOffscreen(*context, offscreen);
     destroyFieldRenderer(*context, renderer);
+}
+
+// The near raster (near_raster.h): the comparison field 12 m away, so that its clumps (1 m
+// spheres) span 6 to 30 px at 320x180 and most lie at LODs 1 to 3, which the near raster takes.
+namespace {
+
+ComparisonField nearField(float farRadius) {
+    ComparisonField field = comparisonField(farRadius);
+    field.scenery.nearRaster = true;
+    field.camera.eye = glm::vec3(0.0f, 3.0f, -12.0f);
+    return field;
+}
+
+} // namespace
+
+// With the near raster, its two passes are timed between the draw and the splat pass.
+TEST_F(Gpu, TimestampsBracketTheNearRastersPasses) {
+    const ComparisonField field = nearField(3.0f);
+    FieldRenderer renderer = createFieldRenderer(*context, field.clumps, field.instances, testAtlas(), field.scenery);
+    Offscreen offscreen = createOffscreen(*context, {160, 90});
+    const FrameTimings t = renderOffscreenFrame(*context, renderer, offscreen, frameState(field.camera, 160, 90));
+    std::vector<std::string> labels;
+    for (const PassTime& p : t.gpu)
+        labels.push_back(p.label);
+    EXPECT_EQ(labels, (std::vector<std::string>{"animate", "cull", "light", "groundMap", "sky", "draw", "nearVertices",
+                                                "nearRaster", "farSplat", "tonemap"}));
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
+}
+
+// The near raster against its CPU reference (render/near_reference.h), from the very inputs the GPU
+// read in the frame: the near list the cull pass wrote, the draw records and the light the light
+// pass projected. Coverage is integer arithmetic on both (near_raster.h), so the same pixels are
+// covered; the interpolation's floats may round differently (the shader may fuse a multiply-add the
+// C++ rounds twice), so colours and depths agree to 1 % and 1e-5, except at most 1 % of the pixels,
+// where two triangles lie within rounding of each other's depth.
+TEST_F(Gpu, NearRasterMatchesCpuReference) {
+    ComparisonField field = nearField(0.0f);
+    FieldRenderer renderer = createFieldRenderer(*context, field.clumps, field.instances, testAtlas(), field.scenery);
+    const VkExtent2D extent{320, 180};
+    Offscreen offscreen = createOffscreen(*context, extent);
+    FrameState state = frameState(field.camera, extent.width, extent.height);
+    state.wind.baseLevel = 2.0f;
+    for (int frame = 0; frame < 3; ++frame) {
+        state.seconds = frame * 0.1;
+        renderOffscreenFrame(*context, renderer, offscreen, state);
+    }
+
+    NearRasterInputs in;
+    std::memcpy(&in.frame, renderer.frameUniforms.mapped(), sizeof(in.frame));
+    in.mirrorNormal = renderer.mirrorNormal;
+    const gpu::GpuNearDispatch dispatch = readAll<gpu::GpuNearDispatch>(*context, renderer.nearDispatch, 1)[0];
+    in.nearList = readAll<glm::uvec4>(*context, renderer.nearList, dispatch.count);
+    in.drawInstances = readAll<gpu::GpuDrawInstance>(*context, renderer.drawInstances, field.instances.size());
+    in.clumps = readAll<gpu::GpuClump>(*context, renderer.clumps, field.clumps.size());
+    in.nearMeshes = readAll<glm::uvec4>(*context, renderer.nearMeshes, renderer.meshCount);
+    in.indices = readAll<uint32_t>(*context, renderer.indices, renderer.indices.size / sizeof(uint32_t));
+    in.lodVertices = readAll<gpu::GpuLodVertex>(*context, renderer.lodVertices,
+                                                renderer.lodVertices.size / sizeof(gpu::GpuLodVertex));
+    in.motionData = readAll<float>(*context, renderer.motionData, renderer.motionData.size / sizeof(float));
+    in.vertexLight = readAll<glm::uvec4>(*context, renderer.vertexLight, renderer.vertexLight.size / 16);
+    in.atlas = testAtlas();
+    const FieldStats stats = readFieldStats(renderer);
+    const std::vector<uint64_t> gpuWords = readFarVisibility(*context, offscreen.targets);
+    const std::vector<uint64_t> cpuWords = nearRasterReference(in);
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
+
+    EXPECT_GT(dispatch.count, 200u);
+    EXPECT_EQ(stats.nearInstances, dispatch.count);
+    EXPECT_GT(stats.nearTriangles, 10000u);
+    ASSERT_EQ(gpuWords.size(), cpuWords.size());
+    const uint64_t empty = (uint64_t(gpu::kFarEmpty) << 32) | gpu::kFarEmpty;
+    size_t covered = 0, oneSided = 0, differing = 0, identical = 0;
+    for (size_t i = 0; i < gpuWords.size(); ++i) {
+        const bool onGpu = gpuWords[i] != empty, onCpu = cpuWords[i] != empty;
+        covered += onGpu || onCpu;
+        if (onGpu != onCpu) {
+            ++oneSided;
+            continue;
+        }
+        if (!onGpu)
+            continue;
+        identical += gpuWords[i] == cpuWords[i];
+        const gpu::FarVec3 a = gpu::unpackRgb9e5(uint32_t(gpuWords[i])), b = gpu::unpackRgb9e5(uint32_t(cpuWords[i]));
+        const float largest = std::max({a.x, a.y, a.z, b.x, b.y, b.z, 1e-6f});
+        const float colour = std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)}) / largest;
+        const float depthA = gpu::farKeyDepth(uint32_t(gpuWords[i] >> 32));
+        const float depthB = gpu::farKeyDepth(uint32_t(cpuWords[i] >> 32));
+        differing += colour > 0.01f || std::abs(depthA - depthB) > 1e-5f * std::max(depthA, depthB);
+    }
+    std::printf("near draws %u, triangles %llu, covered %zu, one-sided %zu, differing %zu, identical %zu\n",
+                dispatch.count, static_cast<unsigned long long>(stats.nearTriangles), covered, oneSided, differing,
+                identical);
+    EXPECT_GT(covered, 5000u);
+    EXPECT_LE(oneSided, covered / 1000) << "pixels only one of GPU and CPU covered, of " << covered;
+    EXPECT_LE(differing, covered / 100) << "pixels whose nearest triangle differs, of " << covered;
+}
+
+// The CPU-driven path writes the near list and its dispatch that the cull pass would: the same
+// draws, the same picture, byte for byte (the atomics make the order of the list immaterial).
+TEST_F(Gpu, CpuDrivenPathDrawsTheSameNearRaster) {
+    const ComparisonField field = nearField(3.0f);
+    const PathRun gpuPath = drawOnPath(*context, field, false, 4), cpuPath = drawOnPath(*context, field, true, 4);
+    EXPECT_GT(gpuPath.stats.nearInstances, 200u);
+    EXPECT_EQ(cpuPath.stats.nearInstances, gpuPath.stats.nearInstances);
+    EXPECT_EQ(cpuPath.stats.nearTriangles, gpuPath.stats.nearTriangles);
+    EXPECT_TRUE(gpuPath.picture == cpuPath.picture);
+}
+
+// The near raster draws what the mesh pass draws for the same LODs: the same picture but for the
+// pixels where the two rasterisers' rounding, mip choice or light interpolation differ.
+TEST_F(Gpu, NearRasterDrawsWhatTheMeshPassDraws) {
+    ComparisonField field = nearField(3.0f);
+    const PathRun raster = drawOnPath(*context, field, false, 4);
+    field.scenery.nearRaster = false;
+    const PathRun meshes = drawOnPath(*context, field, false, 4);
+    EXPECT_GT(raster.stats.nearInstances, 200u);
+    EXPECT_EQ(meshes.stats.nearInstances, 0u);
+    EXPECT_EQ(raster.stats.trianglesDrawn + raster.stats.nearTriangles, meshes.stats.trianglesDrawn);
+    size_t plant = 0; // pixels that differ from the sky and ground's colour in either
+    for (size_t i = 0; i + 3 < raster.picture.size(); i += 4)
+        plant += raster.picture[i] != meshes.picture[i] || raster.picture[i + 1] != meshes.picture[i + 1];
+    const size_t differing = differingChannels(raster.picture, meshes.picture);
+    std::printf("channels differing by more than 8: %zu of %zu (pixels with any change %zu)\n", differing,
+                raster.picture.size(), plant);
+    EXPECT_LE(differing, raster.picture.size() / 100);
 }

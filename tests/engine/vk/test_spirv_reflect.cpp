@@ -1,6 +1,7 @@
 // The embedded shaders reflect to the layouts the host binds; no device needed.
 #include "core/error.h"
 #include "gpu_types.h"
+#include "near_raster.h"
 #include "vk/shader_registry.h"
 #include "vk/spirv_reflect.h"
 
@@ -14,12 +15,40 @@ TEST(SpirvReflect, CullPassLayout) {
     EXPECT_EQ(r.localSize[0], gpu::kCullGroupSize);
     EXPECT_EQ(r.localSize[1], 1u);
     // Frame; instances, draws, visible list, statistics, LOD state, clumps, motion states, draw records,
-    // the far list and the far dispatch.
-    ASSERT_EQ(r.bindings.size(), 11u);
+    // the far list and the far dispatch, the near list, its dispatch and the near meshes.
+    ASSERT_EQ(r.bindings.size(), 14u);
     EXPECT_EQ(r.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
-    for (uint32_t b = 1; b <= 10; ++b)
+    for (uint32_t b = 1; b <= 13; ++b)
         EXPECT_EQ(r.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
     EXPECT_EQ(r.pushConstantBytes, 0u);
+}
+
+TEST(SpirvReflect, NearRasterPassesLayout) {
+    ShaderReflection vertices = reflectShader(findShader("near_vertices.comp"), "near_vertices.comp");
+    EXPECT_EQ(vertices.localSize[0], gpu::kNearGroupSize);
+    // Frame; near list, dispatch, draw records, near meshes; LOD vertices, motion, light as texel
+    // buffers; the shaded vertices. The mirror plane as a push constant.
+    ASSERT_EQ(vertices.bindings.size(), 9u);
+    EXPECT_EQ(vertices.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+    for (uint32_t b = 1; b <= 4; ++b)
+        EXPECT_EQ(vertices.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
+    for (uint32_t b = 5; b <= 7; ++b)
+        EXPECT_EQ(vertices.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << b;
+    EXPECT_EQ(vertices.bindings.at(8), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    EXPECT_EQ(vertices.pushConstantBytes, 16u);
+    ShaderReflection raster = reflectShader(findShader("near_raster.comp"), "near_raster.comp");
+    EXPECT_EQ(raster.localSize[0], gpu::kNearGroupSize);
+    // Frame; near list, dispatch, draw records, clumps, near meshes; indices and shaded vertices as
+    // texel buffers; the atlas; the visibility buffer.
+    ASSERT_EQ(raster.bindings.size(), 10u);
+    EXPECT_EQ(raster.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+    for (uint32_t b = 1; b <= 5; ++b)
+        EXPECT_EQ(raster.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
+    for (uint32_t b = 6; b <= 7; ++b)
+        EXPECT_EQ(raster.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << b;
+    EXPECT_EQ(raster.bindings.at(8), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    EXPECT_EQ(raster.bindings.at(9), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    EXPECT_EQ(raster.pushConstantBytes, 0u);
 }
 
 TEST(SpirvReflect, FarPassesLayout) {

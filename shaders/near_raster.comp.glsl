@@ -1,0 +1,134 @@
+#version 460
+// The near raster (near_raster.h): the LOD draws the cull pass listed for it, drawn triangle by
+// triangle in compute into the far field's visibility buffer, instead of through the graphics
+// pipeline (on lavapipe, its one front-end thread; on a GPU, its few geometry units). Each
+// workgroup takes one listed draw at a time (indirect dispatch, then every gl_NumWorkGroups-th),
+// its threads striding over the LOD mesh's triangles, whose vertices near_vertices.comp moved and
+// lit. Each covered pixel is lit as instance.frag lights it (the crossfade dither, the atlas's alpha
+// test at the mip of the triangle's texel density, the side the eye sees) and merged with a 64-bit
+// atomicMin of (depth key, RGB9E5 radiance), as the splat pass merges samples. far_resolve.comp
+// then shows the winners that are nearer than the meshes.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+#include "common.glsl"
+#include "lod_select.h"
+#include "draw_instance.h"
+#include "near_raster.h"
+
+layout(local_size_x = kNearGroupSize) in;
+
+MEADOW_FRAME_BLOCK(0, 0)
+layout(set = 0, binding = 1, std430) readonly buffer NearList { uvec4 nearList[]; }; // near_raster.h
+layout(set = 0, binding = 2, std430) readonly buffer NearDispatch { GpuNearDispatch nearDispatch; };
+layout(set = 0, binding = 3, std430) readonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
+layout(set = 0, binding = 4, std430) readonly buffer Clumps { GpuClump clumps[]; };
+layout(set = 0, binding = 5, std430) readonly buffer NearMeshes { uvec4 nearMeshes[]; }; // near_raster.h
+layout(set = 0, binding = 6) uniform usamplerBuffer indices;
+layout(set = 0, binding = 7) uniform usamplerBuffer nearVertices; // near_vertices.comp's, 2 texels each
+layout(set = 0, binding = 8) uniform sampler2D atlas;
+layout(set = 0, binding = 9, std430) buffer Visibility { uint64_t visibility[]; };
+
+// One shaded vertex (near_vertices.comp).
+struct NearVertex {
+    vec2 pixel;
+    float invW;
+    vec3 front;
+    vec3 back;
+    vec3 uvFacing;
+};
+
+NearVertex readVertex(uint slot) {
+    uvec4 a = texelFetch(nearVertices, int(2u * slot)), b = texelFetch(nearVertices, int(2u * slot + 1u));
+    NearVertex v;
+    v.pixel = uintBitsToFloat(a.xy);
+    v.invW = uintBitsToFloat(a.z);
+    v.front = unpackRgb9e5(b.x);
+    v.back = unpackRgb9e5(b.y);
+    v.uvFacing = vec3(uintBitsToFloat(b.zw), uintBitsToFloat(a.w));
+    return v;
+}
+
+void main() {
+    uint total = nearDispatch.count;
+    ivec2 size = ivec2(frame.lodScreen.zw);
+    vec2 atlasSize = vec2(textureSize(atlas, 0));
+    // z_clip is the near plane's distance for every point (camera.cpp's reversed, infinite projection).
+    float nearPlane = frame.viewProj[3][2];
+    for (uint item = gl_WorkGroupID.x; item < total; item += gl_NumWorkGroups.x) {
+        uvec4 listed = nearList[item];
+        uint entry = listed.x;
+        GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
+        uvec4 mesh = nearMeshes[listed.y];
+        vec4 albedo = clumps[inst.offsets.w >> 16u].albedo; // w 1: constant albedo instead of the atlas
+        uint lod = listed.y % frame.counts.w;
+        bool fading = inst.pose.w > 0.0;
+        bool isFadeLod = (entry & kLodFadeEntryBit) != 0u;
+        uint ditherLevel = lodDitherLevel(inst.pose.w);
+        for (uint t = gl_LocalInvocationID.x; 3u * t < mesh.w; t += gl_WorkGroupSize.x) {
+            uint first = mesh.z + 3u * t;
+            NearVertex v0 = readVertex(listed.z + texelFetch(indices, int(first)).r);
+            NearVertex v1 = readVertex(listed.z + texelFetch(indices, int(first + 1u)).r);
+            NearVertex v2 = readVertex(listed.z + texelFetch(indices, int(first + 2u)).r);
+            NearTriangle tri = nearSetUp(v0.pixel, v1.pixel, v2.pixel, size.x, size.y, int(listed.w));
+            if (!tri.drawn)
+                continue;
+            if (tri.swapped) {
+                NearVertex v = v1;
+                v1 = v2;
+                v2 = v;
+            }
+            // Edge i lies opposite vertex i; its function over the area is vertex i's weight.
+            NearEdge e0 = nearEdgeStart(tri.x1, tri.y1, tri.x2, tri.y2, tri.rowLo, tri.sub);
+            NearEdge e1 = nearEdgeStart(tri.x2, tri.y2, tri.x0, tri.y0, tri.rowLo, tri.sub);
+            NearEdge e2 = nearEdgeStart(tri.x0, tri.y0, tri.x1, tri.y1, tri.rowLo, tri.sub);
+            float invArea = 1.0 / float(tri.area);
+            vec3 invW = vec3(v0.invW, v1.invW, v2.invW);
+            vec3 depth = nearPlane * invW;
+            // The atlas's mip from the uv's change per pixel across the triangle (its screen-linear
+            // part: perspective changes it little over a triangle a few pixels wide).
+            vec2 duvdx = -(v0.uvFacing.xy * float(e0.s) + v1.uvFacing.xy * float(e1.s) + v2.uvFacing.xy * float(e2.s)) * invArea;
+            vec2 duvdy = (v0.uvFacing.xy * float(e0.step) + v1.uvFacing.xy * float(e1.step) + v2.uvFacing.xy * float(e2.step)) * invArea;
+            float mip = 0.5 * log2(max(max(dot(duvdx * atlasSize, duvdx * atlasSize), dot(duvdy * atlasSize, duvdy * atlasSize)), 1e-20));
+            // One loop over the covered pixels, row by row, rather than a loop over rows around a loop over
+            // each row's span: a SIMD row of threads (lavapipe's, or a GPU's warp), each on its own
+            // triangle, then runs the pixel's work about as often as its busiest thread has pixels,
+            // not as its longest span times its most rows.
+            int row = tri.rowLo, col = nearSpanLow(e2, nearSpanLow(e1, nearSpanLow(e0, tri.colLo)));
+            int hi = nearSpanHigh(e2, nearSpanHigh(e1, nearSpanHigh(e0, tri.colHi)));
+            for (;;) {
+                // On to the next row with a pixel inside.
+                while (col > hi && row < tri.rowHi) {
+                    ++row;
+                    e0 = nearEdgeNextRow(e0);
+                    e1 = nearEdgeNextRow(e1);
+                    e2 = nearEdgeNextRow(e2);
+                    col = nearSpanLow(e2, nearSpanLow(e1, nearSpanLow(e0, tri.colLo)));
+                    hi = nearSpanHigh(e2, nearSpanHigh(e1, nearSpanHigh(e0, tri.colHi)));
+                }
+                if (col > hi)
+                    break;
+                uint px = uint(tri.originX + col), py = uint(tri.originY + row);
+                int at = col++;
+                if (fading && !lodDitherKeepsLevel(isFadeLod, ditherLevel, px, py))
+                    continue;
+                vec3 w = vec3(float(nearEdgeValue(e0, at)), float(nearEdgeValue(e1, at)), float(nearEdgeValue(e2, at))) *
+                         invArea;
+                vec3 pw = w * invW; // perspective-correct weights
+                pw /= pw.x + pw.y + pw.z;
+                vec3 uvFacing = pw.x * v0.uvFacing + pw.y * v1.uvFacing + pw.z * v2.uvFacing;
+                vec4 texel = albedo.w > 0.5 ? vec4(albedo.rgb, 1.0) : textureLod(atlas, uvFacing.xy, mip);
+                if (texel.a < 0.5)
+                    continue;
+                bool front = uvFacing.z >= 0.0;
+                vec3 light = front ? pw.x * v0.front + pw.y * v1.front + pw.z * v2.front
+                                   : pw.x * v0.back + pw.y * v1.back + pw.z * v2.back;
+                vec3 radiance = texel.rgb * light;
+                if (frame.motion.z == kDebugViewLod)
+                    radiance = kLodViewColors[min(lod, kLodFar)] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
+                uint64_t word = packUint2x32(uvec2(packRgb9e5(radiance.r, radiance.g, radiance.b), farDepthKey(dot(w, depth))));
+                atomicMin(visibility[py * uint(size.x) + px], word);
+            }
+        }
+    }
+}

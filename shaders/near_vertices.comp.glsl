@@ -1,0 +1,98 @@
+#version 460
+// The near raster's first pass (near_raster.h): every vertex of each listed LOD draw moved and lit
+// once, as instance.vert does it, into the near raster's vertex buffer at the draw's range, which
+// the cull pass allotted. Each workgroup takes one listed draw at a time (indirect dispatch, then
+// every gl_NumWorkGroups-th), its threads striding over the LOD mesh's vertices. near_raster.comp
+// then reads three of them per triangle: shaded once rather than once per triangle that uses them.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+#include "lod_select.h"
+#include "draw_instance.h"
+#include "near_raster.h"
+
+layout(local_size_x = kNearGroupSize) in;
+
+MEADOW_FRAME_BLOCK(0, 0)
+layout(set = 0, binding = 1, std430) readonly buffer NearList { uvec4 nearList[]; }; // near_raster.h
+layout(set = 0, binding = 2, std430) readonly buffer NearDispatch { GpuNearDispatch nearDispatch; };
+layout(set = 0, binding = 3, std430) readonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
+layout(set = 0, binding = 4, std430) readonly buffer NearMeshes { uvec4 nearMeshes[]; }; // near_raster.h
+layout(set = 0, binding = 5) uniform usamplerBuffer lodVertices; // GpuLodVertex: 3 texels each
+layout(set = 0, binding = 6) uniform samplerBuffer motionData;
+layout(set = 0, binding = 7) uniform usamplerBuffer vertexLight;
+layout(set = 0, binding = 8, std430) writeonly buffer NearVertices { uvec4 nearVertices[]; }; // 2 per vertex
+layout(push_constant) uniform NearParams { vec4 mirrorNormal; }; // as instance.vert's
+
+// One vertex as instance.vert makes it: clip position, the light of both sides / pi, uv and the
+// facing term n . (eye - x).
+struct NearVertex {
+    vec4 clip;
+    vec3 front;
+    vec3 back;
+    vec3 uvFacing;
+    uint lod; // the LOD the debug view shows
+};
+
+NearVertex shadeVertex(uint index, GpuDrawInstance inst) {
+    NearVertex o;
+    vec4 positionU = uintBitsToFloat(texelFetch(lodVertices, int(3u * index)));
+    vec4 normalV = uintBitsToFloat(texelFetch(lodVertices, int(3u * index + 1u)));
+    uvec4 motion = texelFetch(lodVertices, int(3u * index + 2u));
+    uint rank = motion.w & 0xffffu;
+    uint q0 = inst.offsets.x + motion.y, q1 = inst.offsets.y + motion.y;
+    bool blending = inst.pose.z > 0.0;
+    vec3 d = vec3(0.0);
+    for (uint k = 0u; k < rank; ++k) {
+        uint row = motion.x + 3u * k;
+        float q = texelFetch(motionData, int(q0 + k)).r;
+        if (blending)
+            q = mix(q, texelFetch(motionData, int(q1 + k)).r, inst.pose.z);
+        d += vec3(texelFetch(motionData, int(row)).r, texelFetch(motionData, int(row + 1u)).r,
+                  texelFetch(motionData, int(row + 2u)).r) *
+             q;
+    }
+    uint base = inst.offsets.z + motion.z * (inst.offsets.w & 0xffffu);
+    uvec4 w0 = texelFetch(vertexLight, int(base)), w1 = texelFetch(vertexLight, int(base + 1u)),
+          w2 = texelFetch(vertexLight, int(base + 2u));
+    vec4 l0 = vec4(unpackHalf2x16(w0.x), unpackHalf2x16(w0.y)), l1 = vec4(unpackHalf2x16(w0.z), unpackHalf2x16(w0.w));
+    vec4 l2 = vec4(unpackHalf2x16(w1.x), unpackHalf2x16(w1.y)), l3 = vec4(unpackHalf2x16(w1.z), unpackHalf2x16(w1.w));
+    vec4 l4 = vec4(unpackHalf2x16(w2.x), unpackHalf2x16(w2.y)), l5 = vec4(unpackHalf2x16(w2.z), unpackHalf2x16(w2.w));
+    o.front = max(vec3(l0.x + dot(l0.yzw, d), l1.x + dot(l1.yzw, d), l2.x + dot(l2.yzw, d)), 0.0) / kPi;
+    o.back = max(vec3(l3.x + dot(l3.yzw, d), l4.x + dot(l4.yzw, d), l5.x + dot(l5.yzw, d)), 0.0) / kPi;
+
+    vec3 p = positionU.xyz + d, n = normalV.xyz;
+    if (inst.positionScale.w < 0.0) {
+        vec3 m = vec3(mirrorNormal.x, 0.0, mirrorNormal.z);
+        p -= 2.0 * dot(p, m) * m;
+        n -= 2.0 * dot(n, m) * m;
+    }
+    float c = inst.pose.x, s = inst.pose.y;
+    mat3 yaw = mat3(c, 0.0, -s, 0.0, 1.0, 0.0, s, 0.0, c);
+    vec3 world = inst.positionScale.xyz + yaw * (p * abs(inst.positionScale.w));
+    o.clip = frame.viewProj * vec4(world, 1.0);
+    o.uvFacing = vec3(positionU.w, normalV.w, dot(yaw * n, frame.cameraPosition.xyz - world));
+    o.lod = motion.w >> 16u;
+    return o;
+}
+
+void main() {
+    uint total = nearDispatch.count;
+    vec2 size = frame.lodScreen.zw;
+    for (uint item = gl_WorkGroupID.x; item < total; item += gl_NumWorkGroups.x) {
+        uvec4 listed = nearList[item];
+        GpuDrawInstance inst = drawInstances[listed.x & kLodEntryIndexMask];
+        uvec4 mesh = nearMeshes[listed.y];
+        for (uint v = gl_LocalInvocationID.x; v < mesh.y; v += gl_WorkGroupSize.x) {
+            NearVertex o = shadeVertex(mesh.x + v, inst);
+            // Every listed instance lies in front of the near plane (the cull pass's test): w > 0.
+            float invW = 1.0 / o.clip.w;
+            vec2 pixel = (o.clip.xy * invW * 0.5 + 0.5) * size;
+            uint slot = 2u * (listed.z + v);
+            nearVertices[slot] = uvec4(floatBitsToUint(pixel.x), floatBitsToUint(pixel.y), floatBitsToUint(invW),
+                                       floatBitsToUint(o.uvFacing.z));
+            nearVertices[slot + 1u] = uvec4(packRgb9e5(o.front.r, o.front.g, o.front.b),
+                                            packRgb9e5(o.back.r, o.back.g, o.back.b),
+                                            floatBitsToUint(o.uvFacing.x), floatBitsToUint(o.uvFacing.y));
+        }
+    }
+}
