@@ -27,8 +27,9 @@ const char* const kFieldOptionsHelp =
   --lod-tolerance PX    the screen-space error at which each coarser LOD takes over: its RMS
                         distance from the full mesh, in pixels (default 0.3; 0.05 to 4). Larger
                         is faster and coarser: the switch radii scale with it
-  --near-raster         LOD 1 and the coarser mesh LODs of instances below 192 px drawn triangle
-                        by triangle in compute passes instead of the graphics pipeline
+  --near-raster on|off  LOD 1 and the coarser mesh LODs of instances below 192 px drawn triangle
+                        by triangle in compute passes instead of the graphics pipeline (default
+                        on; off: every mesh LOD through the graphics pipeline)
 )";
 
 void addFieldOptions(CommandSpec& spec) {
@@ -36,7 +37,7 @@ void addFieldOptions(CommandSpec& spec) {
     spec.switchOptions.insert("--lod0");
     spec.switchOptions.insert("--far-lod0");
     spec.valueOptions.insert("--lod-tolerance");
-    spec.switchOptions.insert("--near-raster");
+    spec.valueOptions.insert("--near-raster");
 }
 
 FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
@@ -61,10 +62,15 @@ FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
         throw Error("meadow " + args.command +
                     ": --far-lod0 draws the far field's clumps as LOD 0 meshes: it needs the far field, "
                     "which --far-radius 0 turns off");
-    options.nearRaster = args.has("--near-raster");
-    if (options.lod0 && options.nearRaster)
-        throw Error("meadow " + args.command +
-                    ": --lod0 draws every clump at full detail, so no middle LOD is drawn: leave out --near-raster");
+    if (std::optional<std::string> near = args.value("--near-raster")) {
+        if (*near != "on" && *near != "off")
+            throw Error("meadow " + args.command + ": --near-raster '" + *near + "' is not on or off");
+        options.nearRaster = *near == "on";
+        if (options.lod0 && options.nearRaster)
+            throw Error(
+                "meadow " + args.command +
+                ": --lod0 draws every clump at full detail, so no coarser LOD is drawn: leave out --near-raster");
+    }
     return options;
 }
 

@@ -21,7 +21,7 @@ void addEngineOptions(CommandSpec& spec);
 void addSceneOptions(CommandSpec& spec);
 
 // Options of commands that draw the field (render, bench, view): --far-radius PX, --lod0, --far-lod0,
-// --lod-tolerance PX, --near-raster.
+// --lod-tolerance PX, --near-raster on|off.
 extern const char* const kFieldOptionsHelp;
 void addFieldOptions(CommandSpec& spec);
 struct FieldOptions {
@@ -29,7 +29,7 @@ struct FieldOptions {
     bool lod0 = false;      // every clump at full detail: the reference the LODs and the far field approximate
     bool farLod0 = false;   // the far field's clumps as LOD 0 meshes: the far field's own reference
     float lodTolerance = kDefaultLodTolerancePixels; // px of RMS error where each LOD takes over
-    bool nearRaster = false;                         // the middle LODs drawn by the near raster (near_raster.h)
+    bool nearRaster = true; // LOD 1 and coarser drawn by the near raster (near_raster.h), unless --lod0
 };
 // Read and checked before any work starts; fieldScenery takes lodTolerance, and applyFieldOptions
 // applies the rest to the library's clumps and scenery.

@@ -772,6 +772,21 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     return out;
 }
 
+std::vector<uint32_t> readNearRasterDraws(Context& ctx, const FieldRenderer& r) {
+    std::vector<uint32_t> perMesh(r.meshCount, 0);
+    if (!r.nearRasterOn)
+        return perMesh;
+    gpu::GpuNearDispatch dispatch{};
+    readbackBuffer(ctx, r.nearDispatch, &dispatch, sizeof dispatch);
+    std::vector<glm::uvec4> list(dispatch.count);
+    if (!list.empty())
+        readbackBuffer(ctx, r.nearList, list.data(), list.size() * sizeof(glm::uvec4));
+    for (const glm::uvec4& entry : list)
+        if (entry.y < perMesh.size())
+            ++perMesh[entry.y];
+    return perMesh;
+}
+
 namespace {
 
 // The RGB of a half-float RGBA image that the fragment shaders read.

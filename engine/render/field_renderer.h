@@ -277,6 +277,10 @@ void recordFieldFrame(Context& context, FieldRenderer& renderer, VkCommandBuffer
                       GpuTimer* timer);
 
 // The statistics of the last completed frame.
+// The near raster's draws of the last frame per draw bucket (read back from the near list: a copy
+// and a wait, for benchmarks and tests, not every frame); all 0 without the near raster.
+std::vector<uint32_t> readNearRasterDraws(Context& context, const FieldRenderer& renderer);
+
 FieldStats readFieldStats(const FieldRenderer& renderer);
 
 // The ground light map as the last light pass left it: RGB per texel, row by row (for tests and

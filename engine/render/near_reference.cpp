@@ -93,8 +93,7 @@ std::vector<uint64_t> nearRasterReference(const NearRasterInputs& in) {
         throw Error("nearRasterReference: the LOD debug view's colours are not modelled");
     const int width = int(frame.lodScreen.z), height = int(frame.lodScreen.w);
     if (width <= 0 || height <= 0)
-        throw Error("nearRasterReference: the frame's size is " + std::to_string(width) + "x" +
-                    std::to_string(height));
+        throw Error("nearRasterReference: the frame's size is " + std::to_string(width) + "x" + std::to_string(height));
     if (in.atlas.rgba.size() < 4)
         throw Error("nearRasterReference: the atlas is empty");
     for (size_t i = 4; i < in.atlas.rgba.size(); ++i)
@@ -141,10 +140,10 @@ std::vector<uint64_t> nearRasterReference(const NearRasterInputs& in) {
                     const uint32_t px = uint32_t(tri.originX + col), py = uint32_t(tri.originY + row);
                     if (fading && !gpu::lodDitherKeepsLevel(isFadeLod, ditherLevel, px, py))
                         continue;
-                    const glm::vec3 w = glm::vec3(float(gpu::nearEdgeValue(e0, col)),
-                                                  float(gpu::nearEdgeValue(e1, col)),
-                                                  float(gpu::nearEdgeValue(e2, col))) *
-                                        invArea;
+                    const glm::vec3 w =
+                        glm::vec3(float(gpu::nearEdgeValue(e0, col)), float(gpu::nearEdgeValue(e1, col)),
+                                  float(gpu::nearEdgeValue(e2, col))) *
+                        invArea;
                     glm::vec3 pw = w * invW;
                     pw /= pw.x + pw.y + pw.z;
                     const glm::vec3 uvFacing = pw.x * v0.uvFacing + pw.y * v1.uvFacing + pw.z * v2.uvFacing;
@@ -154,9 +153,8 @@ std::vector<uint64_t> nearRasterReference(const NearRasterInputs& in) {
                     const glm::vec3 light = front ? pw.x * v0.front + pw.y * v1.front + pw.z * v2.front
                                                   : pw.x * v0.back + pw.y * v1.back + pw.z * v2.back;
                     const glm::vec3 radiance = glm::vec3(texelAt) * light;
-                    const uint64_t word =
-                        (uint64_t(gpu::farDepthKey(glm::dot(w, depth))) << 32) |
-                        gpu::packRgb9e5(radiance.x, radiance.y, radiance.z);
+                    const uint64_t word = (uint64_t(gpu::farDepthKey(glm::dot(w, depth))) << 32) |
+                                          gpu::packRgb9e5(radiance.x, radiance.y, radiance.z);
                     uint64_t& slot = visibility[size_t(py) * size_t(width) + px];
                     slot = std::min(slot, word);
                 }

@@ -173,10 +173,9 @@ MEADOW_NEAR_FN int nearEdgeValue(NearEdge e, int col) {
 }
 
 // A triangle set up for the raster from its vertices' pixel coordinates (x right, y down, (0, 0) the
-// picture's top-left corner, as the viewport maps clip space): its vertices snapped, relative to `origin` (the pixel whose
-// corner lies at or below the lowest vertex), wound so that its doubled area is positive (`swapped`:
-// vertices 1 and 2 were exchanged for that), and the box-relative pixels whose centres it may cover,
-// clamped to the picture.
+// picture's top-left corner, as the viewport maps clip space): its vertices snapped, relative to `origin` (the pixel
+// whose corner lies at or below the lowest vertex), wound so that its doubled area is positive (`swapped`: vertices 1
+// and 2 were exchanged for that), and the box-relative pixels whose centres it may cover, clamped to the picture.
 struct NearTriangle {
     bool drawn; // false: degenerate, outside the picture or larger than kNearMaxSpan
     bool swapped;

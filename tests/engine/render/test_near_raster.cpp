@@ -53,7 +53,8 @@ std::vector<std::pair<int, int>> coveredByEdgeTest(const gpu::NearTriangle& t, i
     const int64_t xs[3] = {t.x0, t.x1, t.x2}, ys[3] = {t.y0, t.y1, t.y2};
     for (int py = 0; py < height; ++py)
         for (int px = 0; px < width; ++px) {
-            const int64_t cx = int64_t(px - t.originX) * t.sub + t.sub / 2, cy = int64_t(py - t.originY) * t.sub + t.sub / 2;
+            const int64_t cx = int64_t(px - t.originX) * t.sub + t.sub / 2,
+                          cy = int64_t(py - t.originY) * t.sub + t.sub / 2;
             bool inside = true;
             for (int i = 0; i < 3; ++i) {
                 const int a = (i + 1) % 3, b = (i + 2) % 3;
@@ -132,9 +133,9 @@ TEST(NearRaster, TrianglesSharingAnEdgeCoverEachPixelOnce) {
     std::map<std::pair<int, int>, int> count;
     for (int i = 0; i < 40; ++i) {
         const float x = 5.0f + 0.1f * float(i);
-        for (const auto& [a, b, c] : {std::tuple{gpu::vec2(x, 2.0f), gpu::vec2(x + 0.1f, 2.0f), gpu::vec2(x + 20.0f, 60.0f)},
-                                      std::tuple{gpu::vec2(x + 0.1f, 2.0f), gpu::vec2(x + 20.1f, 60.0f),
-                                                 gpu::vec2(x + 20.0f, 60.0f)}})
+        for (const auto& [a, b, c] :
+             {std::tuple{gpu::vec2(x, 2.0f), gpu::vec2(x + 0.1f, 2.0f), gpu::vec2(x + 20.0f, 60.0f)},
+              std::tuple{gpu::vec2(x + 0.1f, 2.0f), gpu::vec2(x + 20.1f, 60.0f), gpu::vec2(x + 20.0f, 60.0f)}})
             for (const auto& p : coveredBySpans(gpu::nearSetUp(a, b, c, width, height, 64)))
                 ++count[p];
     }
