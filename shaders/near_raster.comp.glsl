@@ -16,7 +16,8 @@
 #include "draw_instance.h"
 #include "near_raster.h"
 
-layout(local_size_x = kNearGroupSize) in;
+// The width is the device's (near_raster.h): specialization constant 0.
+layout(local_size_x = kNearGroupSize, local_size_x_id = 0) in;
 
 MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer NearList { uvec4 nearList[]; }; // near_raster.h

@@ -113,6 +113,9 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
                             " far-field samples; the far field needs 1 to 16777215 per clump (rebuild the library)");
     }
 
+    if (scenery.nearWidth > 1024)
+        throw Error("the near raster's workgroup width of " + std::to_string(scenery.nearWidth) +
+                    " threads is above 1024");
     FieldRenderer r;
     try {
         fillFieldRenderer(ctx, r, clumps, instances, atlas, scenery);
@@ -145,8 +148,11 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     const uint32_t farLanes = scenery.farLanes > 0 ? scenery.farLanes : farSplatLanesFor(ctx.properties);
     r.farSplat = createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4), gpu::kFarInstancesPerGroup * farLanes);
     r.farResolve = createComputePipeline(ctx, "far_resolve.comp");
-    r.nearVertices = createComputePipeline(ctx, "near_vertices.comp", sizeof(glm::vec4));
-    r.nearRaster = createComputePipeline(ctx, "near_raster.comp");
+    const uint32_t nearWidth = scenery.nearWidth > 0                                      ? scenery.nearWidth
+                               : ctx.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? gpu::kNearCpuGroupSize
+                                                                                          : gpu::kNearGroupSize;
+    r.nearVertices = createComputePipeline(ctx, "near_vertices.comp", sizeof(glm::vec4), nearWidth);
+    r.nearRaster = createComputePipeline(ctx, "near_raster.comp", 0, nearWidth);
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);
     r.windAzimuth = std::atan2(wind.x, wind.y); // light/sh.h: from +z towards +x

@@ -97,6 +97,9 @@ struct FieldScenery {
     // The middle LODs (1 up to the last) of instances below gpu::kNearMaxRadius px drawn by the near
     // raster (near_raster.h) instead of the mesh pass (--near-raster); the GPU-driven path only.
     bool nearRaster = false;
+    // The near raster's workgroup width (near_raster.h): 1 to 1024; 0: the device's (64 on a GPU, 16
+    // on a CPU). The picture is the same with any.
+    uint32_t nearWidth = 0;
     sky::SkyDay sky; // SH order 3; at least one frame
 };
 

@@ -57,7 +57,12 @@ inline float nearFloorF(float x) {
 // Subpixels: the largest box side whose edge functions (products of two box-relative coordinates)
 // and their steps fit in 32 bits.
 MEADOW_NEAR_CONST kNearMaxSpan = 1u << 14u;
-MEADOW_NEAR_CONST kNearGroupSize = 64u; // threads per raster-list entry, striding over its triangles
+// Threads per listed draw, striding over its vertices and triangles: the workgroup's width, a
+// specialization constant per device (nearGroupSizeFor in field_renderer.cpp): 64 on a GPU, 16 on
+// a CPU, where smaller workgroups share the draws out more evenly between lavapipe's threads
+// (docs/BENCHMARKS.md, "The near raster"). The picture is the same at any width.
+MEADOW_NEAR_CONST kNearGroupSize = 64u;
+MEADOW_NEAR_CONST kNearCpuGroupSize = 16u;
 MEADOW_NEAR_CONST kNearMaxGroups = 65535u;
 // The cull pass hands an instance at a middle LOD to the near raster only below this projected
 // radius (px), and only when its bounding sphere lies wholly in front of the near plane, so that

@@ -4,6 +4,7 @@
 // ctest runs these at two lavapipe vector widths (LP_NATIVE_VECTOR_WIDTH=128 and 256).
 #include "gpu_fixture.h"
 #include "library/mesh.h"
+#include "near_raster.h"
 #include "pipeline/far_samples.h"
 #include "render/cpu_driver.h"
 #include "render/far_reference.h"
@@ -537,6 +538,23 @@ TEST_F(Gpu, CpuDrivenPathDrawsTheSameNearRaster) {
     EXPECT_EQ(cpuPath.stats.nearInstances, gpuPath.stats.nearInstances);
     EXPECT_EQ(cpuPath.stats.nearTriangles, gpuPath.stats.nearTriangles);
     EXPECT_TRUE(gpuPath.picture == cpuPath.picture);
+}
+
+// The near raster's workgroup width (16 on lavapipe, 64 on a GPU) only shares the draws and their
+// triangles out differently: the same picture, byte for byte.
+TEST_F(Gpu, TheNearRasterDrawsTheSamePictureAtAnyWidth) {
+    ComparisonField field = nearField(3.0f);
+    field.scenery.nearWidth = gpu::kNearCpuGroupSize;
+    const PathRun narrow = drawOnPath(*context, field, false, 3);
+    EXPECT_GT(narrow.stats.nearInstances, 200u);
+    for (uint32_t width : {1u, gpu::kNearGroupSize, 256u}) {
+        field.scenery.nearWidth = width;
+        const PathRun other = drawOnPath(*context, field, false, 3);
+        EXPECT_EQ(other.stats.nearTriangles, narrow.stats.nearTriangles) << width;
+        EXPECT_TRUE(other.picture == narrow.picture) << width << " threads";
+    }
+    field.scenery.nearWidth = 2048;
+    EXPECT_THROW(drawOnPath(*context, field, false, 1), Error);
 }
 
 // The near raster draws what the mesh pass draws for the same LODs: the same picture but for the

@@ -26,6 +26,7 @@ TEST(SpirvReflect, CullPassLayout) {
 TEST(SpirvReflect, NearRasterPassesLayout) {
     ShaderReflection vertices = reflectShader(findShader("near_vertices.comp"), "near_vertices.comp");
     EXPECT_EQ(vertices.localSize[0], gpu::kNearGroupSize);
+    EXPECT_TRUE(vertices.localSizeXSpecialized); // the width is the device's
     // Frame; near list, dispatch, draw records, near meshes; LOD vertices, motion, light as texel
     // buffers; the shaded vertices. The mirror plane as a push constant.
     ASSERT_EQ(vertices.bindings.size(), 9u);
@@ -38,6 +39,7 @@ TEST(SpirvReflect, NearRasterPassesLayout) {
     EXPECT_EQ(vertices.pushConstantBytes, 16u);
     ShaderReflection raster = reflectShader(findShader("near_raster.comp"), "near_raster.comp");
     EXPECT_EQ(raster.localSize[0], gpu::kNearGroupSize);
+    EXPECT_TRUE(raster.localSizeXSpecialized);
     // Frame; near list, dispatch, draw records, clumps, near meshes; indices and shaded vertices as
     // texel buffers; the atlas; the visibility buffer.
     ASSERT_EQ(raster.bindings.size(), 10u);
