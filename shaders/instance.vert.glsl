@@ -9,6 +9,7 @@
 #include "common.glsl"
 #include "lod_select.h"
 #include "draw_instance.h"
+#include "clump_vertex.glsl"
 
 MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer VisibleList { uint visible[]; };
@@ -62,25 +63,12 @@ void main() {
     // Irradiance of both sides to first order in d, for this instance's light variant (its yaw
     // bin, mirrored or not: light.comp), from half floats: (E, gradient) per side and channel.
     uint base = inst.offsets.z + v.motion.z * (inst.offsets.w & 0xffffu);
-    uvec4 w0 = vertexLight[base], w1 = vertexLight[base + 1u], w2 = vertexLight[base + 2u];
-    vec4 l0 = vec4(unpackHalf2x16(w0.x), unpackHalf2x16(w0.y)), l1 = vec4(unpackHalf2x16(w0.z), unpackHalf2x16(w0.w));
-    vec4 l2 = vec4(unpackHalf2x16(w1.x), unpackHalf2x16(w1.y)), l3 = vec4(unpackHalf2x16(w1.z), unpackHalf2x16(w1.w));
-    vec4 l4 = vec4(unpackHalf2x16(w2.x), unpackHalf2x16(w2.y)), l5 = vec4(unpackHalf2x16(w2.z), unpackHalf2x16(w2.w));
-    outFront = max(vec3(l0.x + dot(l0.yzw, d), l1.x + dot(l1.yzw, d), l2.x + dot(l2.yzw, d)), 0.0) / kPi;
-    outBack = max(vec3(l3.x + dot(l3.yzw, d), l4.x + dot(l4.yzw, d), l5.x + dot(l5.yzw, d)), 0.0) / kPi;
+    clumpVertexLight(vertexLight[base], vertexLight[base + 1u], vertexLight[base + 2u], d, outFront, outBack);
 
-    bool mirrored = inst.positionScale.w < 0.0;
-    vec3 p = v.positionU.xyz + d, n = v.normalV.xyz;
-    if (mirrored) {
-        vec3 m = vec3(mirrorNormal.x, 0.0, mirrorNormal.z);
-        p -= 2.0 * dot(p, m) * m;
-        n -= 2.0 * dot(n, m) * m;
-    }
-    float c = inst.pose.x, s = inst.pose.y;
-    mat3 yaw = mat3(c, 0.0, -s, 0.0, 1.0, 0.0, s, 0.0, c);
-    vec3 world = inst.positionScale.xyz + yaw * (p * abs(inst.positionScale.w));
+    vec3 n = v.normalV.xyz;
+    vec3 world = clumpVertexWorld(inst, v.positionU.xyz + d, n, mirrorNormal.xz);
     gl_Position = frame.viewProj * vec4(world, 1.0);
-    outUvFacing = vec3(v.positionU.w, v.normalV.w, dot(yaw * n, frame.cameraPosition.xyz - world));
+    outUvFacing = vec3(v.positionU.w, v.normalV.w, dot(n, frame.cameraPosition.xyz - world));
     vec4 albedo = clumps[inst.offsets.w >> 16u].albedo; // w 1: constant albedo instead of the atlas
     uint facts = lodDitherLevel(fade) | ((entry & kLodFadeEntryBit) != 0u ? kClumpFadeLodBit : 0u) |
                  (fade > 0.0 ? kClumpFadingBit : 0u) | (albedo.w > 0.5 ? kClumpConstantAlbedoBit : 0u) |

@@ -9,6 +9,7 @@
 #include "lod_select.h"
 #include "draw_instance.h"
 #include "near_raster.h"
+#include "clump_vertex.glsl"
 
 // The width is the device's (near_raster.h): specialization constant 0.
 layout(local_size_x = kNearGroupSize, local_size_x_id = 0) in;
@@ -53,25 +54,12 @@ NearVertex shadeVertex(uint index, GpuDrawInstance inst) {
              q;
     }
     uint base = inst.offsets.z + motion.z * (inst.offsets.w & 0xffffu);
-    uvec4 w0 = texelFetch(vertexLight, int(base)), w1 = texelFetch(vertexLight, int(base + 1u)),
-          w2 = texelFetch(vertexLight, int(base + 2u));
-    vec4 l0 = vec4(unpackHalf2x16(w0.x), unpackHalf2x16(w0.y)), l1 = vec4(unpackHalf2x16(w0.z), unpackHalf2x16(w0.w));
-    vec4 l2 = vec4(unpackHalf2x16(w1.x), unpackHalf2x16(w1.y)), l3 = vec4(unpackHalf2x16(w1.z), unpackHalf2x16(w1.w));
-    vec4 l4 = vec4(unpackHalf2x16(w2.x), unpackHalf2x16(w2.y)), l5 = vec4(unpackHalf2x16(w2.z), unpackHalf2x16(w2.w));
-    o.front = max(vec3(l0.x + dot(l0.yzw, d), l1.x + dot(l1.yzw, d), l2.x + dot(l2.yzw, d)), 0.0) / kPi;
-    o.back = max(vec3(l3.x + dot(l3.yzw, d), l4.x + dot(l4.yzw, d), l5.x + dot(l5.yzw, d)), 0.0) / kPi;
-
-    vec3 p = positionU.xyz + d, n = normalV.xyz;
-    if (inst.positionScale.w < 0.0) {
-        vec3 m = vec3(mirrorNormal.x, 0.0, mirrorNormal.z);
-        p -= 2.0 * dot(p, m) * m;
-        n -= 2.0 * dot(n, m) * m;
-    }
-    float c = inst.pose.x, s = inst.pose.y;
-    mat3 yaw = mat3(c, 0.0, -s, 0.0, 1.0, 0.0, s, 0.0, c);
-    vec3 world = inst.positionScale.xyz + yaw * (p * abs(inst.positionScale.w));
+    clumpVertexLight(texelFetch(vertexLight, int(base)), texelFetch(vertexLight, int(base + 1u)),
+                     texelFetch(vertexLight, int(base + 2u)), d, o.front, o.back);
+    vec3 n = normalV.xyz;
+    vec3 world = clumpVertexWorld(inst, positionU.xyz + d, n, mirrorNormal.xz);
     o.clip = frame.viewProj * vec4(world, 1.0);
-    o.uvFacing = vec3(positionU.w, normalV.w, dot(yaw * n, frame.cameraPosition.xyz - world));
+    o.uvFacing = vec3(positionU.w, normalV.w, dot(n, frame.cameraPosition.xyz - world));
     o.lod = motion.w >> 16u;
     return o;
 }

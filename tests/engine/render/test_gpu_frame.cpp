@@ -264,6 +264,35 @@ template <typename T> std::vector<T> readAll(Context& context, const Buffer& buf
     return values;
 }
 
+// Two visibility buffers (far_splat.h's words) pixel by pixel: covered by either, by one only, both
+// covered with words more than 1 % apart in colour or 1e-5 in depth, and equal bit for bit.
+struct WordComparison {
+    size_t covered = 0, oneSided = 0, differing = 0, identical = 0;
+};
+
+WordComparison compareWords(const std::vector<uint64_t>& gpuWords, const std::vector<uint64_t>& cpuWords) {
+    const uint64_t empty = (uint64_t(gpu::kFarEmpty) << 32) | gpu::kFarEmpty;
+    WordComparison c;
+    for (size_t i = 0; i < gpuWords.size() && i < cpuWords.size(); ++i) {
+        const bool onGpu = gpuWords[i] != empty, onCpu = cpuWords[i] != empty;
+        c.covered += onGpu || onCpu;
+        if (onGpu != onCpu) {
+            ++c.oneSided;
+            continue;
+        }
+        if (!onGpu)
+            continue;
+        c.identical += gpuWords[i] == cpuWords[i];
+        const gpu::FarVec3 a = gpu::unpackRgb9e5(uint32_t(gpuWords[i])), b = gpu::unpackRgb9e5(uint32_t(cpuWords[i]));
+        const float largest = std::max({a.x, a.y, a.z, b.x, b.y, b.z, 1e-6f});
+        const float colour = std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)}) / largest;
+        const float depthA = gpu::farKeyDepth(uint32_t(gpuWords[i] >> 32));
+        const float depthB = gpu::farKeyDepth(uint32_t(cpuWords[i] >> 32));
+        c.differing += colour > 0.01f || std::abs(depthA - depthB) > 1e-5f * std::max(depthA, depthB);
+    }
+    return c;
+}
+
 } // namespace
 
 // The splat pass against its CPU reference (render/far_reference.h), from the very inputs the GPU
@@ -307,25 +336,10 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
 
     EXPECT_GT(dispatch.count, 200u);
     ASSERT_EQ(gpuWords.size(), cpuWords.size());
+    const WordComparison words = compareWords(gpuWords, cpuWords);
+    const size_t covered = words.covered, oneSided = words.oneSided, differing = words.differing,
+                 identical = words.identical;
     const uint64_t empty = (uint64_t(gpu::kFarEmpty) << 32) | gpu::kFarEmpty;
-    size_t covered = 0, oneSided = 0, differing = 0, identical = 0;
-    for (size_t i = 0; i < gpuWords.size(); ++i) {
-        const bool onGpu = gpuWords[i] != empty, onCpu = cpuWords[i] != empty;
-        covered += onGpu || onCpu;
-        if (onGpu != onCpu) {
-            ++oneSided;
-            continue;
-        }
-        if (!onGpu)
-            continue;
-        identical += gpuWords[i] == cpuWords[i];
-        const gpu::FarVec3 a = gpu::unpackRgb9e5(uint32_t(gpuWords[i])), b = gpu::unpackRgb9e5(uint32_t(cpuWords[i]));
-        const float largest = std::max({a.x, a.y, a.z, b.x, b.y, b.z, 1e-6f});
-        const float colour = std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)}) / largest;
-        const float depthA = gpu::farKeyDepth(uint32_t(gpuWords[i] >> 32));
-        const float depthB = gpu::farKeyDepth(uint32_t(cpuWords[i] >> 32));
-        differing += colour > 0.01f || std::abs(depthA - depthB) > 1e-5f * std::max(depthA, depthB);
-    }
     std::printf("far instances %u, covered %zu, one-sided %zu, differing %zu, identical %zu\n", dispatch.count, covered,
                 oneSided, differing, identical);
     // The far field fills a good part of the frame: the comparison is not of two empty buffers.
@@ -502,25 +516,9 @@ TEST_F(Gpu, NearRasterMatchesCpuReference) {
     EXPECT_EQ(stats.nearInstances, dispatch.count);
     EXPECT_GT(stats.nearTriangles, 10000u);
     ASSERT_EQ(gpuWords.size(), cpuWords.size());
-    const uint64_t empty = (uint64_t(gpu::kFarEmpty) << 32) | gpu::kFarEmpty;
-    size_t covered = 0, oneSided = 0, differing = 0, identical = 0;
-    for (size_t i = 0; i < gpuWords.size(); ++i) {
-        const bool onGpu = gpuWords[i] != empty, onCpu = cpuWords[i] != empty;
-        covered += onGpu || onCpu;
-        if (onGpu != onCpu) {
-            ++oneSided;
-            continue;
-        }
-        if (!onGpu)
-            continue;
-        identical += gpuWords[i] == cpuWords[i];
-        const gpu::FarVec3 a = gpu::unpackRgb9e5(uint32_t(gpuWords[i])), b = gpu::unpackRgb9e5(uint32_t(cpuWords[i]));
-        const float largest = std::max({a.x, a.y, a.z, b.x, b.y, b.z, 1e-6f});
-        const float colour = std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)}) / largest;
-        const float depthA = gpu::farKeyDepth(uint32_t(gpuWords[i] >> 32));
-        const float depthB = gpu::farKeyDepth(uint32_t(cpuWords[i] >> 32));
-        differing += colour > 0.01f || std::abs(depthA - depthB) > 1e-5f * std::max(depthA, depthB);
-    }
+    const WordComparison words = compareWords(gpuWords, cpuWords);
+    const size_t covered = words.covered, oneSided = words.oneSided, differing = words.differing,
+                 identical = words.identical;
     std::printf("near draws %u, triangles %llu, covered %zu, one-sided %zu, differing %zu, identical %zu\n",
                 dispatch.count, static_cast<unsigned long long>(stats.nearTriangles), covered, oneSided, differing,
                 identical);
