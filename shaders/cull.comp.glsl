@@ -37,21 +37,24 @@ void append(uint bucket, uint entry) {
     visible[draws[bucket].firstInstance + slot] = entry;
 }
 
-// An instance's mesh LOD drawn by the near raster instead of the mesh pass (one more workgroup for
-// it), or by the mesh pass when the near raster's vertex buffer has no room left for its vertices.
-void appendNearOrMesh(uint bucket, uint entry, int sub) {
-    uvec4 mesh = nearMeshes[bucket];
-    uint start = atomicAdd(nearDispatch.vertices, mesh.y);
-    if (start + mesh.y > kNearMaxVertices || start + mesh.y < start) {
-        append(bucket, entry);
-        return;
+// An instance's draw at mesh LOD `lod` (bucket `bucket`): by the near raster when the instance is
+// given a subpixel grid (sub > 0) and the LOD is 1 or coarser, with one more workgroup for it, and
+// there is room for its vertices in the near raster's vertex buffer; otherwise by the draw pass.
+void appendLod(uint bucket, uint lod, uint entry, int sub) {
+    if (sub > 0 && lod >= 1u) {
+        uvec4 mesh = nearMeshes[bucket];
+        uint start = atomicAdd(nearDispatch.vertices, mesh.y);
+        if (start + mesh.y <= kNearMaxVertices && start + mesh.y >= start) {
+            uint slot = atomicAdd(nearDispatch.count, 1u);
+            nearList[slot] = uvec4(entry, bucket, start, uint(sub));
+            if (slot < kNearMaxGroups)
+                atomicAdd(nearDispatch.groupsX, 1u);
+            atomicAdd(stats.nearInstances, 1u);
+            atomicAdd(stats.nearTriangles, mesh.w / 3u);
+            return;
+        }
     }
-    uint slot = atomicAdd(nearDispatch.count, 1u);
-    nearList[slot] = uvec4(entry, bucket, start, uint(sub));
-    if (slot < kNearMaxGroups)
-        atomicAdd(nearDispatch.groupsX, 1u);
-    atomicAdd(stats.nearInstances, 1u);
-    atomicAdd(stats.nearTriangles, mesh.w / 3u);
+    append(bucket, entry);
 }
 
 // A far instance: as many of its clump's samples as its projected surface wants; one more
@@ -118,23 +121,16 @@ void main() {
         // Below the far radius the far field replaces the last mesh LOD (only when the frame has one).
         bool far = c.lod == kLodFar, farFade = c.fadeLod == kLodFar && !far;
         uint lod = min(c.lod, lodCount - 1u), fadeLod = min(c.fadeLod, lodCount - 1u);
-        // The middle LODs go to the near raster when it is on, the instance is small enough on the
+        // LOD 1 and coarser go to the near raster when it is on, the instance is small enough on the
         // screen and its sphere lies wholly in front of the near plane (frustum plane 4).
         precise float nearDistance = dot(frame.frustumPlanes[4].xyz, center) + frame.frustumPlanes[4].w;
-        bool nearRaster = (frame.motion.w & kFrameNearRaster) != 0u && screenRadius <= kNearMaxRadius &&
-                          nearDistance > radius;
-        if (!far) {
-            if (nearRaster && lod >= 1u)
-                appendNearOrMesh(first + lod, index, nearSubpixelFor(screenRadius));
-            else
-                append(first + lod, index);
-        }
-        if (fadeLod != lod && !farFade) {
-            if (nearRaster && fadeLod >= 1u)
-                appendNearOrMesh(first + fadeLod, index | kLodFadeEntryBit, nearSubpixelFor(screenRadius));
-            else
-                append(first + fadeLod, index | kLodFadeEntryBit);
-        }
+        int sub = (frame.motion.w & kFrameNearRaster) != 0u && screenRadius <= kNearMaxRadius && nearDistance > radius
+                      ? nearSubpixelFor(screenRadius)
+                      : 0;
+        if (!far)
+            appendLod(first + lod, lod, index, sub);
+        if (fadeLod != lod && !farFade)
+            appendLod(first + fadeLod, fadeLod, index | kLodFadeEntryBit, sub);
         if ((far || farFade) && (frame.motion.w & kFrameFarAsLod0) != 0u) {
             // The far field's reference: the instance at LOD 0 in its place, marked for the LOD view.
             append(first, (farFade ? index | kLodFadeEntryBit : index) | kLodFarMeshEntryBit);

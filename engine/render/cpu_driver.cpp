@@ -142,24 +142,27 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
         ++stats.farInstances;
         stats.farSamples += count;
     };
-    // The near raster's list, as cull.comp's appendNearOrMesh writes it: the entry, its bucket and
-    // its vertices' place, or the mesh pass when they would not fit.
+    // The near raster's list, as cull.comp's appendLod writes it: the entry, its bucket, its vertices'
+    // place and its subpixel grid, or the draw pass when the near raster does not take it.
     d.nearEntries = 0;
     uint32_t nearVertices = 0;
-    auto appendNearOrMesh = [&](uint32_t bucket, uint32_t entry, int sub) {
-        const glm::uvec4 mesh = d.nearMeshes[bucket];
-        const uint32_t start = nearVertices;
-        nearVertices += mesh.y;
-        if (uint64_t(start) + mesh.y > gpu::kNearMaxVertices) {
-            append(bucket, entry);
-            return;
-        }
-        const glm::uvec4 item(entry, bucket, start, uint32_t(sub));
-        std::memcpy(hostWriteAt(ctx, d.staging, d.nearListAt + size_t(d.nearEntries) * sizeof item, sizeof item), &item,
+    auto appendLod = [&](uint32_t bucket, uint32_t lod, uint32_t entry, int sub) {
+        if (sub > 0 && lod >= 1) {
+            const glm::uvec4 mesh = d.nearMeshes[bucket];
+            const uint32_t start = nearVertices;
+            nearVertices += mesh.y;
+            if (uint64_t(start) + mesh.y <= gpu::kNearMaxVertices) {
+                const glm::uvec4 item(entry, bucket, start, uint32_t(sub));
+                std::memcpy(
+                    hostWriteAt(ctx, d.staging, d.nearListAt + size_t(d.nearEntries) * sizeof item, sizeof item), &item,
                     sizeof item);
-        ++d.nearEntries;
-        ++stats.nearInstances;
-        stats.nearTriangles += mesh.w / 3u;
+                ++d.nearEntries;
+                ++stats.nearInstances;
+                stats.nearTriangles += mesh.w / 3u;
+                return;
+            }
+        }
+        append(bucket, entry);
     };
     for (uint32_t i = 0; i < d.instances.size(); ++i) {
         ++stats.testedInstances;
@@ -178,18 +181,10 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
         const bool far = choice.lod == gpu::kLodFar, farFade = choice.fadeLod == gpu::kLodFar && !far;
         const uint32_t lod = std::min(choice.lod, d.lodCount - 1), fade = std::min(choice.fadeLod, d.lodCount - 1);
         const int nearSub = nearRasterReference(frame, d.instances[i]);
-        if (!far) {
-            if (nearSub > 0 && lod >= 1)
-                appendNearOrMesh(first + lod, i, nearSub);
-            else
-                append(first + lod, i);
-        }
-        if (fade != lod && !farFade) {
-            if (nearSub > 0 && fade >= 1)
-                appendNearOrMesh(first + fade, i | gpu::kLodFadeEntryBit, nearSub);
-            else
-                append(first + fade, i | gpu::kLodFadeEntryBit);
-        }
+        if (!far)
+            appendLod(first + lod, lod, i, nearSub);
+        if (fade != lod && !farFade)
+            appendLod(first + fade, fade, i | gpu::kLodFadeEntryBit, nearSub);
         if ((far || farFade) && farAsLod0) {
             append(first, (farFade ? i | gpu::kLodFadeEntryBit : i) | gpu::kLodFarMeshEntryBit);
             ++stats.farInstances;

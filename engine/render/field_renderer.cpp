@@ -373,11 +373,6 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     r = FieldRenderer{};
 }
 
-// The near raster runs on both paths: the CPU-driven one uploads its list and dispatch (cpu_driver.h).
-static bool nearRuns(const FieldRenderer& r) {
-    return r.nearRasterOn;
-}
-
 gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
     if (state.width == 0 || state.height == 0)
         throw Error("a frame of size " + std::to_string(state.width) + "x" + std::to_string(state.height));
@@ -408,7 +403,7 @@ gpu::GpuFrame frameUniforms(const FieldRenderer& r, const FrameState& state) {
         steps = uint32_t(std::min<int64_t>(tick - r.lastTick, gpu::kMaxMotionStepsPerFrame));
     f.motion =
         gpu::uvec4(uint32_t(tick - int64_t(steps) + 1), steps, state.debugView,
-                   (far && r.farAsLod0 ? gpu::kFrameFarAsLod0 : 0u) | (nearRuns(r) ? gpu::kFrameNearRaster : 0u));
+                   (far && r.farAsLod0 ? gpu::kFrameFarAsLod0 : 0u) | (r.nearRasterOn ? gpu::kFrameNearRaster : 0u));
     f.counts.z = uint32_t(tick);
 
     // Sky: the two frames of the day around the hour; the sun from them; exposure from the
@@ -494,11 +489,11 @@ void advanceMotion(Context& ctx, FieldRenderer& r, const FrameState& state) {
 
 namespace {
 
-// The visibility buffer and the resolve run with the far field or the near raster. The far field runs
-// on both paths: the CPU-driven one uploads the far list and its dispatch that the cull pass would
-// write (cpu_driver.h).
+// The visibility buffer and the resolve run with the far field or the near raster. Both run on both
+// paths: the CPU-driven one uploads the lists and dispatches that the cull pass would write
+// (cpu_driver.h).
 bool farRuns(const FieldRenderer& r) {
-    return r.farField || nearRuns(r);
+    return r.farField || r.nearRasterOn;
 }
 
 void markPass(GpuTimer* timer, VkCommandBuffer cmd, const char* pass) {
@@ -665,7 +660,7 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
     barrier(cmd, access::kComputeRead, access::kTransferWrite);
     vkCmdFillBuffer(cmd, t.farVisibility.buffer, 0, VK_WHOLE_SIZE, gpu::kFarEmpty);
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
-    if (nearRuns(r)) {
+    if (r.nearRasterOn) {
         // Every vertex of the listed draws moved and lit once, then their triangles drawn.
         bindPipeline(ctx, cmd, r.nearVertices,
                      {r.frameUniforms, r.nearList, r.nearDispatch, r.drawInstances, r.nearMeshes,
