@@ -35,6 +35,7 @@ layout(set = 0, binding = 6) uniform usamplerBuffer lodVertices; // GpuLodVertex
 layout(set = 0, binding = 7) uniform samplerBuffer motionData;
 layout(set = 0, binding = 8) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 9, std430) buffer Visibility { uint64_t visibility[]; };
+#include "clump_motion.glsl"
 // As instance.vert: the mirror plane's normal (xz).
 layout(push_constant) uniform FarParams { vec4 mirrorNormal; };
 
@@ -66,7 +67,6 @@ void main() {
         float c = inst.pose.x, s = inst.pose.y;
         mat3 yaw = mat3(c, 0.0, -s, 0.0, 1.0, 0.0, s, 0.0, c);
         float scale = abs(inst.positionScale.w);
-        bool blending = inst.pose.z > 0.0;
         // Each drawn sample stands for an equal share of the surface (stochastic pruning).
         float area = uintBitsToFloat(clump.far.z) * scale * scale;
         float areaPerSample = area / float(count);
@@ -102,19 +102,7 @@ void main() {
             uint k = next;
             next += lanes;
             farSample.data = texelFetch(farSamples, int(2u * (clump.far.x + farSampleSlot(start, k, clump.far.y)) + 1u));
-            uvec4 motion = texelFetch(lodVertices, int(3u * farSample.data.w + 2u)); // GpuLodVertex::motion
-            uint rank = motion.w & 0xffffu;
-            uint q0 = inst.offsets.x + motion.y, q1 = inst.offsets.y + motion.y;
-            vec3 d = vec3(0.0);
-            for (uint r = 0u; r < rank; ++r) {
-                uint row = motion.x + 3u * r;
-                float q = texelFetch(motionData, int(q0 + r)).r;
-                if (blending)
-                    q = mix(q, texelFetch(motionData, int(q1 + r)).r, inst.pose.z);
-                d += vec3(texelFetch(motionData, int(row)).r, texelFetch(motionData, int(row + 1u)).r,
-                          texelFetch(motionData, int(row + 2u)).r) *
-                     q;
-            }
+            vec3 d = clumpVertexDisplacement(texelFetch(lodVertices, int(3u * farSample.data.w + 2u)), inst);
             vec3 p = uintBitsToFloat(farSample.position.xyz) + d, n = unpackOctahedralNormal(farSample.data.x);
             if (mirrored) {
                 p -= 2.0 * dot(p, m) * m;

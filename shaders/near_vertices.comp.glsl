@@ -23,6 +23,7 @@ layout(set = 0, binding = 5) uniform usamplerBuffer lodVertices; // GpuLodVertex
 layout(set = 0, binding = 6) uniform samplerBuffer motionData;
 layout(set = 0, binding = 7) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 8, std430) writeonly buffer NearVertices { uvec4 nearVertices[]; }; // 2 per vertex
+#include "clump_motion.glsl"
 layout(push_constant) uniform NearParams { vec4 mirrorNormal; }; // as instance.vert's
 
 // One vertex as instance.vert makes it: clip position, the light of both sides / pi, uv and the
@@ -40,19 +41,7 @@ NearVertex shadeVertex(uint index, GpuDrawInstance inst) {
     vec4 positionU = uintBitsToFloat(texelFetch(lodVertices, int(3u * index)));
     vec4 normalV = uintBitsToFloat(texelFetch(lodVertices, int(3u * index + 1u)));
     uvec4 motion = texelFetch(lodVertices, int(3u * index + 2u));
-    uint rank = motion.w & 0xffffu;
-    uint q0 = inst.offsets.x + motion.y, q1 = inst.offsets.y + motion.y;
-    bool blending = inst.pose.z > 0.0;
-    vec3 d = vec3(0.0);
-    for (uint k = 0u; k < rank; ++k) {
-        uint row = motion.x + 3u * k;
-        float q = texelFetch(motionData, int(q0 + k)).r;
-        if (blending)
-            q = mix(q, texelFetch(motionData, int(q1 + k)).r, inst.pose.z);
-        d += vec3(texelFetch(motionData, int(row)).r, texelFetch(motionData, int(row + 1u)).r,
-                  texelFetch(motionData, int(row + 2u)).r) *
-             q;
-    }
+    vec3 d = clumpVertexDisplacement(motion, inst);
     uint base = inst.offsets.z + motion.z * (inst.offsets.w & 0xffffu);
     clumpVertexLight(texelFetch(vertexLight, int(base)), texelFetch(vertexLight, int(base + 1u)),
                      texelFetch(vertexLight, int(base + 2u)), d, o.front, o.back);

@@ -1,5 +1,7 @@
 #include "render/far_reference.h"
 
+#include "render/reference_motion.h"
+
 #include "core/error.h"
 #include "far_splat.h"
 #include "lod_select.h"
@@ -60,7 +62,6 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
         const float c = inst.pose.x, s = inst.pose.y;
         const glm::mat3 yaw(c, 0.0f, -s, 0.0f, 1.0f, 0.0f, s, 0.0f, c);
         const float scale = std::abs(inst.positionScale.w);
-        const bool blending = inst.pose.z > 0.0f;
         float clumpArea;
         std::memcpy(&clumpArea, &clump.far.z, sizeof clumpArea);
         const float area = clumpArea * scale * scale;
@@ -84,18 +85,7 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
             if ((farSample.position.w >> bit & 1u) == 0u)
                 continue;
             const gpu::GpuLodVertex& v = at(in.lodVertices, farSample.data.w, "LOD vertex");
-            const uint32_t rank = v.motion.w & 0xffffu;
-            const uint32_t q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
-            glm::vec3 d(0.0f);
-            for (uint32_t r = 0; r < rank; ++r) {
-                const uint32_t row = v.motion.x + 3u * r;
-                float q = at(in.motionData, q0 + r, "motion coordinate");
-                if (blending)
-                    q = glm::mix(q, at(in.motionData, q1 + r, "motion coordinate"), inst.pose.z);
-                d += glm::vec3(at(in.motionData, row, "motion row"), at(in.motionData, row + 1u, "motion row"),
-                               at(in.motionData, row + 2u, "motion row")) *
-                     q;
-            }
+            const glm::vec3 d = clumpVertexDisplacement(in.motionData, v.motion, inst, "farSplatReference");
             glm::vec3 p = glm::uintBitsToFloat(glm::uvec3(farSample.position)) + d,
                       n = unpackOctahedralNormal(farSample.data.x);
             if (mirrored) {

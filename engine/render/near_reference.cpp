@@ -1,5 +1,7 @@
 #include "render/near_reference.h"
 
+#include "render/reference_motion.h"
+
 #include "core/error.h"
 #include "far_splat.h"
 #include "lod_select.h"
@@ -38,19 +40,7 @@ glm::vec3 rgb9e5(glm::vec3 c) {
 Shaded shadeVertex(const NearRasterInputs& in, uint32_t index, const gpu::GpuDrawInstance& inst) {
     const gpu::GpuFrame& frame = in.frame;
     const gpu::GpuLodVertex& v = at(in.lodVertices, index, "LOD vertex");
-    const uint32_t rank = v.motion.w & 0xffffu;
-    const uint32_t q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
-    const bool blending = inst.pose.z > 0.0f;
-    glm::vec3 d(0.0f);
-    for (uint32_t k = 0; k < rank; ++k) {
-        const uint32_t row = v.motion.x + 3u * k;
-        float q = at(in.motionData, q0 + k, "motion coordinate");
-        if (blending)
-            q = glm::mix(q, at(in.motionData, q1 + k, "motion coordinate"), inst.pose.z);
-        d += glm::vec3(at(in.motionData, row, "motion row"), at(in.motionData, row + 1u, "motion row"),
-                       at(in.motionData, row + 2u, "motion row")) *
-             q;
-    }
+    const glm::vec3 d = clumpVertexDisplacement(in.motionData, v.motion, inst, "nearRasterReference");
     const size_t base = size_t(inst.offsets.z) + size_t(v.motion.z) * (inst.offsets.w & 0xffffu);
     const glm::uvec4 w0 = at(in.vertexLight, base, "vertex light"), w1 = at(in.vertexLight, base + 1, "vertex light"),
                      w2 = at(in.vertexLight, base + 2, "vertex light");

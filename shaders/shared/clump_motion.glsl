@@ -1,0 +1,26 @@
+// A clump vertex's displacement from its mean pose for an instance's motion-graph state,
+// d = sum over its modes k of U_k q_k (docs/ARCHITECTURE.md, Motion), read from texel buffers:
+// shared by near_vertices.comp (the near raster's vertices) and far_splat.comp (the far field's
+// samples, which move with their last-LOD vertex). instance.vert sums the same from storage
+// buffers. Needs draw_instance.h (GpuDrawInstance), and `motionData`, the motion data as a
+// samplerBuffer of floats, declared before it is included.
+
+// `motion` is the vertex's GpuLodVertex::motion: its first basis row (x), its block's first
+// coordinate in a frame (y) and its rank (w's low 16 bits). Across a motion-graph jump
+// (inst.pose.z > 0) the coordinates of the two frames (inst.offsets.x and .y) are blended.
+vec3 clumpVertexDisplacement(uvec4 motion, GpuDrawInstance inst) {
+    uint rank = motion.w & 0xffffu;
+    uint q0 = inst.offsets.x + motion.y, q1 = inst.offsets.y + motion.y;
+    bool blending = inst.pose.z > 0.0;
+    vec3 d = vec3(0.0);
+    for (uint k = 0u; k < rank; ++k) {
+        uint row = motion.x + 3u * k;
+        float q = texelFetch(motionData, int(q0 + k)).r;
+        if (blending)
+            q = mix(q, texelFetch(motionData, int(q1 + k)).r, inst.pose.z);
+        d += vec3(texelFetch(motionData, int(row)).r, texelFetch(motionData, int(row + 1u)).r,
+                  texelFetch(motionData, int(row + 2u)).r) *
+             q;
+    }
+    return d;
+}
