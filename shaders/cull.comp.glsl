@@ -37,11 +37,11 @@ void append(uint bucket, uint entry) {
     visible[draws[bucket].firstInstance + slot] = entry;
 }
 
-// An instance's draw at mesh LOD `lod` (bucket `bucket`): by the near raster when the instance is
-// given a subpixel grid (sub > 0) and the LOD is 1 or coarser, with one more workgroup for it, and
-// there is room for its vertices in the near raster's vertex buffer; otherwise by the draw pass.
-void appendLod(uint bucket, uint lod, uint entry, int sub) {
-    if (sub > 0 && lod >= 1u) {
+// An instance's draw of the mesh in bucket `bucket`: by the near raster when the instance is given a
+// subpixel grid (sub > 0), with one more workgroup for it, and there is room for its vertices in
+// the near raster's vertex buffer; otherwise by the draw pass.
+void appendLod(uint bucket, uint entry, int sub) {
+    if (sub > 0) {
         uvec4 mesh = nearMeshes[bucket];
         uint start = atomicAdd(nearDispatch.vertices, mesh.y);
         if (start + mesh.y <= kNearMaxVertices && start + mesh.y >= start) {
@@ -121,16 +121,16 @@ void main() {
         // Below the far radius the far field replaces the last mesh LOD (only when the frame has one).
         bool far = c.lod == kLodFar, farFade = c.fadeLod == kLodFar && !far;
         uint lod = min(c.lod, lodCount - 1u), fadeLod = min(c.fadeLod, lodCount - 1u);
-        // LOD 1 and coarser go to the near raster when it is on, the instance is small enough on the
+        // The mesh LODs go to the near raster when it is on, the instance is small enough on the
         // screen and its sphere lies wholly in front of the near plane (frustum plane 4).
         precise float nearDistance = dot(frame.frustumPlanes[4].xyz, center) + frame.frustumPlanes[4].w;
         int sub = (frame.motion.w & kFrameNearRaster) != 0u && screenRadius <= kNearMaxRadius && nearDistance > radius
                       ? nearSubpixelFor(screenRadius)
                       : 0;
         if (!far)
-            appendLod(first + lod, lod, index, sub);
+            appendLod(first + lod, index, sub);
         if (fadeLod != lod && !farFade)
-            appendLod(first + fadeLod, fadeLod, index | kLodFadeEntryBit, sub);
+            appendLod(first + fadeLod, index | kLodFadeEntryBit, sub);
         if ((far || farFade) && (frame.motion.w & kFrameFarAsLod0) != 0u) {
             // The far field's reference: the instance at LOD 0 in its place, marked for the LOD view.
             append(first, (farFade ? index | kLodFadeEntryBit : index) | kLodFarMeshEntryBit);

@@ -27,9 +27,9 @@ const char* const kFieldOptionsHelp =
   --lod-tolerance PX    the screen-space error at which each coarser LOD takes over: its RMS
                         distance from the full mesh, in pixels (default 0.3; 0.05 to 4). Larger
                         is faster and coarser: the switch radii scale with it
-  --near-raster on|off  LOD 1 and the coarser mesh LODs of instances below 192 px drawn triangle
-                        by triangle in compute passes instead of the graphics pipeline (default
-                        on; off: every mesh LOD through the graphics pipeline)
+  --near-raster on|off  the mesh LODs of instances below 256 px drawn triangle by triangle in
+                        compute passes instead of the graphics pipeline (default on; off: every
+                        mesh through the graphics pipeline)
 )";
 
 void addFieldOptions(CommandSpec& spec) {
@@ -69,7 +69,8 @@ FieldOptions fieldOptionsFromArgs(const ParsedArgs& args) {
         if (options.lod0 && options.nearRaster)
             throw Error(
                 "meadow " + args.command +
-                ": --lod0 draws every clump at full detail, so no coarser LOD is drawn: leave out --near-raster");
+                ": --lod0 draws every clump at full detail through the graphics pipeline (the reference the near "
+                "raster is checked against): leave out --near-raster");
     }
     return options;
 }

@@ -29,7 +29,7 @@ struct FieldOptions {
     bool lod0 = false;      // every clump at full detail: the reference the LODs and the far field approximate
     bool farLod0 = false;   // the far field's clumps as LOD 0 meshes: the far field's own reference
     float lodTolerance = kDefaultLodTolerancePixels; // px of RMS error where each LOD takes over
-    bool nearRaster = true; // LOD 1 and coarser drawn by the near raster (near_raster.h), unless --lod0
+    bool nearRaster = true; // the mesh LODs drawn by the near raster (near_raster.h), unless --lod0
 };
 // Read and checked before any work starts; fieldScenery takes lodTolerance, and applyFieldOptions
 // applies the rest to the library's clumps and scenery.

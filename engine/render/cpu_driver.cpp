@@ -146,8 +146,8 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
     // place and its subpixel grid, or the draw pass when the near raster does not take it.
     d.nearEntries = 0;
     uint32_t nearVertices = 0;
-    auto appendLod = [&](uint32_t bucket, uint32_t lod, uint32_t entry, int sub) {
-        if (sub > 0 && lod >= 1) {
+    auto appendLod = [&](uint32_t bucket, uint32_t entry, int sub) {
+        if (sub > 0) {
             const glm::uvec4 mesh = d.nearMeshes[bucket];
             const uint32_t start = nearVertices;
             nearVertices += mesh.y;
@@ -182,9 +182,9 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
         const uint32_t lod = std::min(choice.lod, d.lodCount - 1), fade = std::min(choice.fadeLod, d.lodCount - 1);
         const int nearSub = nearRasterReference(frame, d.instances[i]);
         if (!far)
-            appendLod(first + lod, lod, i, nearSub);
+            appendLod(first + lod, i, nearSub);
         if (fade != lod && !farFade)
-            appendLod(first + fade, fade, i | gpu::kLodFadeEntryBit, nearSub);
+            appendLod(first + fade, i | gpu::kLodFadeEntryBit, nearSub);
         if ((far || farFade) && farAsLod0) {
             append(first, (farFade ? i | gpu::kLodFadeEntryBit : i) | gpu::kLodFarMeshEntryBit);
             ++stats.farInstances;

@@ -24,7 +24,7 @@ std::vector<uint32_t> cullReference(const gpu::GpuFrame& frame, std::span<const 
 
 // The LOD the cull pass gives a visible instance (frame.counts.w LODs, the frame's LOD
 // parameters), from its coordinate of the previous frame; the same arithmetic as cull.comp.glsl.
-// Whether cull.comp hands the instance's middle LODs to the near raster (near_raster.h): the frame
+// Whether cull.comp hands the instance's mesh LODs to the near raster (near_raster.h): the frame
 // asks for it (gpu::kFrameNearRaster), the instance's sphere lies wholly in front of the near plane
 // and its projected radius is at most gpu::kNearMaxRadius. Returns the subpixel grid its triangles
 // snap to (gpu::nearSubpixelFor), or 0 where the mesh pass draws it.

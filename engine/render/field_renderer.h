@@ -94,7 +94,7 @@ struct FieldScenery {
     // Threads per far instance in the splat pass (gpu_types.h): a power of two up to
     // gpu::kFarMaxLanes; 0: the device's (farSplatLanesFor). The picture is the same with any.
     uint32_t farLanes = 0;
-    // The middle LODs (1 up to the last) of instances below gpu::kNearMaxRadius px drawn by the near
+    // The mesh LODs (0 up to the last) of instances below gpu::kNearMaxRadius px drawn by the near
     // raster (near_raster.h) instead of the mesh pass (--near-raster); the GPU-driven path only.
     bool nearRaster = false;
     // The near raster's workgroup width (near_raster.h): 1 to 1024; 0: the device's (64 on a GPU, 16

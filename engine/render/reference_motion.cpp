@@ -11,8 +11,8 @@ glm::vec3 clumpVertexDisplacement(const std::vector<float>& motionData, const gl
                                   const gpu::GpuDrawInstance& inst, const char* reference) {
     auto at = [&](size_t index, const char* what) {
         if (index >= motionData.size())
-            throw Error(std::string(reference) + ": " + what + " index " + std::to_string(index) +
-                        " is outside its " + std::to_string(motionData.size()) + " entries");
+            throw Error(std::string(reference) + ": " + what + " index " + std::to_string(index) + " is outside its " +
+                        std::to_string(motionData.size()) + " entries");
         return motionData[index];
     };
     const uint32_t rank = motion.w & 0xffffu;

@@ -62,7 +62,8 @@ MEADOW_CONST kDebugViewNone = 0;
 MEADOW_CONST kDebugViewLod = 1;
 // GpuFrame::motion.w: the far field's instances are drawn as LOD 0 meshes, not splats (its reference).
 MEADOW_CONST kFrameFarAsLod0 = 1;
-// GpuFrame::motion.w: the middle LODs are drawn by the near raster (near_raster.h), not the mesh pass.
+// GpuFrame::motion.w: the mesh LODs of instances small enough on the screen are drawn by the near
+// raster (near_raster.h), not the mesh pass.
 MEADOW_CONST kFrameNearRaster = 2;
 
 // Per frame: the only data the CPU writes each frame (uniform buffer, set 0).

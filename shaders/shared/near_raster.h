@@ -64,17 +64,19 @@ MEADOW_NEAR_CONST kNearMaxSpan = 1u << 14u;
 MEADOW_NEAR_CONST kNearGroupSize = 64u;
 MEADOW_NEAR_CONST kNearCpuGroupSize = 16u;
 MEADOW_NEAR_CONST kNearMaxGroups = 65535u;
-// The cull pass hands an instance at a middle LOD to the near raster only below this projected
-// radius (px), and only when its bounding sphere lies wholly in front of the near plane, so that
-// every vertex lies in front of the eye and every triangle's box within kNearMaxSpan at its
-// instance's grid (nearSubpixelFor: a sphere of radius r px lies at least 3.2 radii from the eye,
-// so it spans at most about 4 r even at the picture's corners).
-MEADOW_NEAR_FCONST kNearMaxRadius = 192.0f;
+// The cull pass hands an instance's LOD draws to the near raster only below this projected radius
+// (px), and only when its bounding sphere lies wholly in front of the near plane, so that every
+// vertex lies in front of the eye and every triangle's box within kNearMaxSpan at its instance's
+// grid (nearSubpixelFor). A sphere of radius r px lies at least f / r radii from the eye (f the
+// focal length in pixels: 2.4 radii at 256 px and 1280x720); seen at the picture's corners, 50
+// degrees off the axis at 1280x720, it then spans at most about 1,830 px, which the 1/8 pixel grid
+// holds (2,048 px).
+MEADOW_NEAR_FCONST kNearMaxRadius = 256.0f;
 
 // The subpixel grid of an instance of projected radius r px: 256 to a pixel up to 12 px (boxes up
-// to 64 px), 64 up to 48 px (256 px), 16 beyond (1024 px).
+// to 64 px), 64 up to 48 px (256 px), 16 up to 192 px (1,024 px), 8 beyond (2,048 px).
 MEADOW_NEAR_FN int nearSubpixelFor(float r) {
-    return r <= 12.0f ? 256 : (r <= 48.0f ? 64 : 16);
+    return r <= 12.0f ? 256 : (r <= 48.0f ? 64 : (r <= 192.0f ? 16 : 8));
 }
 // The near raster's vertex buffer holds this many shaded vertices (2 uvec4 each: 64 MiB); a LOD
 // draw that would pass it goes to the mesh pass instead (the cull pass's atomic count decides, so

@@ -459,6 +459,28 @@ ComparisonField nearField(float farRadius) {
 
 } // namespace
 
+// LOD 0 too goes to the near raster below kNearMaxRadius: with the LOD switches a tenth of the
+// comparison field's, the draw pass draws none of the LOD 0 meshes it draws without the near raster
+// (buckets are clump-major, LOD 0 every kLodCount-th), and the pictures agree as above.
+TEST_F(Gpu, NearRasterTakesLod0BelowItsRadius) {
+    ComparisonField field = nearField(0.3f);
+    const float switches[4] = {6.0f, 2.5f, 1.0f, 0.4f};
+    std::copy(switches, switches + 4, field.scenery.lod.switchRadius);
+    const PathRun raster = drawOnPath(*context, field, false, 4);
+    field.scenery.nearRaster = false;
+    const PathRun meshes = drawOnPath(*context, field, false, 4);
+    uint32_t lod0WithRaster = 0, lod0WithMeshes = 0;
+    for (size_t b = 0; b < meshes.stats.visiblePerMesh.size(); b += kLodCount) {
+        lod0WithRaster += raster.stats.visiblePerMesh[b];
+        lod0WithMeshes += meshes.stats.visiblePerMesh[b];
+    }
+    std::printf("LOD 0 draws in the draw pass: %u with the near raster, %u without\n", lod0WithRaster, lod0WithMeshes);
+    EXPECT_GT(lod0WithMeshes, 50u);
+    EXPECT_EQ(lod0WithRaster, 0u);
+    EXPECT_EQ(raster.stats.trianglesDrawn + raster.stats.nearTriangles, meshes.stats.trianglesDrawn);
+    EXPECT_LE(differingChannels(raster.picture, meshes.picture), raster.picture.size() / 100);
+}
+
 // With the near raster, its two passes are timed between the draw and the splat pass.
 TEST_F(Gpu, TimestampsBracketTheNearRastersPasses) {
     const ComparisonField field = nearField(3.0f);

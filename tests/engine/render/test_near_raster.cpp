@@ -164,4 +164,5 @@ TEST(NearRaster, SetUpRefusesWhatItCannotDrawExactly) {
     EXPECT_EQ(gpu::nearSubpixelFor(3.0f), 256);
     EXPECT_EQ(gpu::nearSubpixelFor(30.0f), 64);
     EXPECT_EQ(gpu::nearSubpixelFor(150.0f), 16);
+    EXPECT_EQ(gpu::nearSubpixelFor(250.0f), 8);
 }
