@@ -95,7 +95,8 @@ struct FieldScenery {
     // gpu::kFarMaxLanes; 0: the device's (farSplatLanesFor). The picture is the same with any.
     uint32_t farLanes = 0;
     // The mesh LODs (0 up to the last) of instances below gpu::kNearMaxRadius px drawn by the near
-    // raster (near_raster.h) instead of the mesh pass (--near-raster); the GPU-driven path only.
+    // raster (near_raster.h) instead of the mesh pass (--near-raster); the CPU-driven path uploads
+    // the same list (cpu_driver.h).
     bool nearRaster = false;
     // The near raster's workgroup width (near_raster.h): 1 to 1024; 0: the device's (64 on a GPU, 16
     // on a CPU). The picture is the same with any.

@@ -1,6 +1,7 @@
-// The near raster (issue 18; docs/ARCHITECTURE.md, The near raster): the clumps' middle LODs drawn by
-// compute passes instead of lavapipe's or a GPU's graphics pipeline, into the far field's
-// visibility buffer (far_splat.h's words), which the resolve pass composites against the meshes.
+// The near raster (issue 18; docs/ARCHITECTURE.md, The near raster): the mesh LODs of the clumps
+// and rocks that are small enough on the screen (kNearMaxRadius) drawn by compute passes instead of lavapipe's or a
+// GPU's graphics pipeline, into the far field's visibility buffer (far_splat.h's words), which the resolve pass
+// composites against the meshes.
 //
 // The cull pass lists each LOD draw it hands over as a uvec4 (its visible-list entry, its draw
 // bucket, the first of its shaded vertices in the near raster's vertex buffer, its subpixel grid), and allots it
