@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -21,6 +22,36 @@
 
 namespace meadow {
 namespace {
+
+// tinygltf's own file reader takes a folder for a file: on Linux a folder opens, and its end lies
+// at 2^63 - 1, which it then tries to allocate. Every file tinygltf reads (the glTF file itself, a
+// buffer or an image named by URI) comes through this reader instead, which reads only regular
+// files of at most kMaxGltfFileBytes.
+constexpr uintmax_t kMaxGltfFileBytes = uintmax_t(512) << 20;
+// tinygltf puts the path before the reason.
+bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+    auto refuse = [&](const std::string& why) {
+        if (err)
+            *err += why;
+        return false;
+    };
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        return refuse("is not a regular file (a folder or a device?)");
+    const uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec)
+        return refuse("cannot read its size (" + ec.message() + ")");
+    if (size == 0)
+        return refuse("the file is empty");
+    if (size > kMaxGltfFileBytes)
+        return refuse("is larger than the " + std::to_string(kMaxGltfFileBytes >> 20) + " MiB meadow reads");
+    std::ifstream in(path, std::ios::binary);
+    out->resize(static_cast<size_t>(size));
+    if (!in || !in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size)) ||
+        in.peek() != std::char_traits<char>::eof())
+        return refuse("cannot be read whole (did it change while being read?)");
+    return true;
+}
 
 // tinygltf hands every image's bytes (from a data URI, a file or a buffer view) to this loader.
 // They are kept undecoded: only the base-colour textures the plant uses are decoded, with
@@ -575,6 +606,8 @@ ImportedPlant importGltfPlantWithMaterials(const std::filesystem::path& path, co
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keepImageBytes, &model);
+    loader.SetFsCallbacks(
+        {&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readRegularFile, &tinygltf::WriteWholeFile, nullptr});
     std::string err, warn;
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),

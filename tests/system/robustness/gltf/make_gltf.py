@@ -171,6 +171,12 @@ def main():
     doc["buffers"][0]["uri"] = "missing_buffer.bin"
     write("buffer_file_missing.gltf", doc)
 
+    # A buffer named by a folder: on Linux a folder opens, and its end lies at 2^63 - 1 (found by
+    # the fuzzer; tinygltf's own reader tried to allocate that much).
+    doc = copy.deepcopy(base)
+    doc["buffers"][0]["uri"] = "."
+    write("buffer_uri_folder.gltf", doc)
+
     doc = copy.deepcopy(base)
     doc["buffers"][0]["uri"] = "data:application/octet-stream;base64,!!not base64!!"
     write("buffer_bad_base64.gltf", doc)
