@@ -206,6 +206,12 @@ void writeLibraryFile(const std::filesystem::path& path, const LibraryFile& libr
 
 LibraryFile readLibraryFile(const std::filesystem::path& path) {
     const std::string where = "library " + path.string();
+    // A folder opens as a stream too, and a device (/dev/zero) never ends: refuse both before reading.
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error(where + ": is a folder, not a library file");
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        throw Error(where + ": is not a regular file (a device?)");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw Error(where + ": cannot open");

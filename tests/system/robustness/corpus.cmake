@@ -230,6 +230,11 @@ meadow_corpus_test(sky.folder "sky map .*/robustness/scenes: is a folder, not an
 file(WRITE "${corpus_out}/sky-folder.json" "{\"name\": \"bad_sky\", \"seed\": 1, \"field\": {\"tilesX\": 1, \"tilesY\": 1}, \"sky\": {\"maps\": [\"${corpus_dir}/scenes\"]}}\n")
 
 # --- libraries ------------------------------------------------------------------------------------
+# A folder opens as a stream, and a device never ends: both refused before a byte is read.
+meadow_corpus_test(library.folder "library .*/robustness/scenes: is a folder, not a library file" --
+  ${meadow} inspect "${corpus_dir}/scenes" --json)
+meadow_corpus_test(library.device "library /dev/zero: is not a regular file \\(a device\\?\\)" --
+  ${meadow} inspect /dev/zero --json)
 meadow_corpus_library(empty "too short to be a meadow library \\(0 bytes\\)")
 meadow_corpus_library(truncated_header "too short to be a meadow library \\(20 bytes\\)")
 meadow_corpus_library(truncated_table "section table is truncated or corrupt")
