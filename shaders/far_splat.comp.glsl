@@ -35,6 +35,8 @@ layout(set = 0, binding = 6) uniform usamplerBuffer lodVertices; // GpuLodVertex
 layout(set = 0, binding = 7) uniform samplerBuffer motionData;
 layout(set = 0, binding = 8) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 9, std430) buffer Visibility { uint64_t visibility[]; };
+// For each instance's bounding sphere (the cull pass's): the coin's bound below.
+layout(set = 0, binding = 10, std430) readonly buffer Instances { GpuInstance instances[]; };
 #include "clump_motion.glsl"
 // As instance.vert: the mirror plane's normal (xz).
 layout(push_constant) uniform FarParams { vec4 mirrorNormal; };
@@ -58,7 +60,8 @@ void main() {
         uvec2 listed = farList[item];
         uint entry = listed.x;
         uint count = listed.y;
-        GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
+        uint instance = entry & kLodEntryIndexMask;
+        GpuDrawInstance inst = drawInstances[instance];
         bool isFadeLod = (entry & kLodFadeEntryBit) != 0u;
         float fade = inst.pose.w;
         GpuClump clump = clumps[inst.offsets.w >> 16u];
@@ -80,9 +83,26 @@ void main() {
         if (mirrored)
             eye -= 2.0 * dot(eye, m) * m;
         float azimuth = farEyeAzimuth(eye.x, eye.z);
-        uint instance = entry & kLodEntryIndexMask;
         uint start = farSampleStart(instance, clump.far.y);
         uint next = lane;
+        // A bound on every sample's coverage coin (below): its footprint at the nearest depth its
+        // instance reaches, facing the eye. clip.w is at least the depth of the bounding sphere's
+        // centre less its radius, taken twice over (the sphere holds the simulated motion, the modes
+        // replay it to within their error); then a sample's footprint (farSampleFootprint, |cosine|
+        // at most 1) is at most coinBound, and one whose random number is at least coinBound loses
+        // the coin below. Such samples are passed over in the search, before their motion and light
+        // are computed (docs/BENCHMARKS.md, "The coverage coin tossed in the search"). The same
+        // samples win as without it; without a bound (the sphere reaching the eye's plane) none is
+        // passed over.
+        float radius = instances[instance].boundingRadius * scale;
+        vec3 wRow = vec3(frame.viewProj[0][3], frame.viewProj[1][3], frame.viewProj[2][3]);
+        float wMin = dot(wRow, inst.positionScale.xyz + vec3(0.0, 0.5 * radius, 0.0)) + frame.viewProj[3][3] -
+                     2.0 * radius * length(wRow);
+        float coinBound = 2.0;
+        if (wMin > 0.0) {
+            float pixelsPerMetre = frame.lodScreen.x / wMin;
+            coinBound = areaPerSample * (pixelsPerMetre * pixelsPerMetre) * gain * 1.001;
+        }
         for (;;) {
             // The next of this thread's samples that its own clump does not hide from here, found in
             // a loop of its own: a SIMD row (lavapipe's, or a GPU's warp) runs the rest of the body
@@ -94,7 +114,7 @@ void main() {
                     texelFetch(farSamples, int(2u * (clump.far.x + farSampleSlot(start, next, clump.far.y))));
                 uint bit = farVisibilityBitAt(azimuth, elevation, farSampleRandom(instance, next + kFarAzimuthStream),
                                               farSampleRandom(instance, next + kFarElevationStream));
-                if ((farSample.position.w >> bit & 1u) != 0u)
+                if ((farSample.position.w >> bit & 1u) != 0u && farSampleRandom(instance, next) < coinBound)
                     break;
             }
             if (next >= count)
