@@ -110,11 +110,13 @@ void main() {
             // the body would run it for nearly every sample (docs/BENCHMARKS.md).
             GpuFarSample farSample;
             for (; next < count; next += lanes) {
+                if (farSampleRandom(instance, next) >= coinBound)
+                    continue;
                 farSample.position =
                     texelFetch(farSamples, int(2u * (clump.far.x + farSampleSlot(start, next, clump.far.y))));
                 uint bit = farVisibilityBitAt(azimuth, elevation, farSampleRandom(instance, next + kFarAzimuthStream),
                                               farSampleRandom(instance, next + kFarElevationStream));
-                if ((farSample.position.w >> bit & 1u) != 0u && farSampleRandom(instance, next) < coinBound)
+                if ((farSample.position.w >> bit & 1u) != 0u)
                     break;
             }
             if (next >= count)
