@@ -109,8 +109,10 @@ void main() {
             // once for every sample some lane draws, and about 60 % are hidden, so testing them in
             // the body would run it for nearly every sample (docs/BENCHMARKS.md).
             GpuFarSample farSample;
+            float coin = 1.0; // the found sample's random number, for its coin below
             for (; next < count; next += lanes) {
-                if (farSampleRandom(instance, next) >= coinBound)
+                coin = farSampleRandom(instance, next);
+                if (coin >= coinBound)
                     continue;
                 farSample.position =
                     texelFetch(farSamples, int(2u * (clump.far.x + farSampleSlot(start, next, clump.far.y))));
@@ -144,7 +146,7 @@ void main() {
             if (cosine < 0.0 && clump.far.w != 0u)
                 continue; // the far side of a closed surface: hidden by its near side
             float footprint = farSampleFootprint(areaPerSample, frame.lodScreen.x / clip.w, cosine) * gain;
-            if (footprint < 1.0 && farSampleRandom(instance, k) >= footprint)
+            if (footprint < 1.0 && coin >= footprint)
                 continue;
             uint side = farSplatSide(footprint);
             vec2 pixel = (ndc.xy * 0.5 + 0.5) * vec2(size);
