@@ -2,7 +2,8 @@
 // The near raster (near_raster.h): the LOD draws the cull pass listed for it, drawn triangle by
 // triangle in compute into the far field's visibility buffer, instead of through the graphics
 // pipeline (on lavapipe, its one front-end thread; on a GPU, its few geometry units). Each
-// workgroup takes one listed draw at a time (indirect dispatch, then every gl_NumWorkGroups-th),
+// workgroup takes one listed draw at a time (indirect dispatch, then every gl_NumWorkGroups-th
+// slot; slots take draws in work_order.h's spread order, which keeps every lavapipe thread busy),
 // its threads striding over the LOD mesh's triangles, whose vertices near_vertices.comp moved and
 // lit. Each covered pixel is lit as instance.frag lights it (the crossfade dither, the atlas's alpha
 // test at the mip of the triangle's texel density, the side the eye sees) and merged with a 64-bit
@@ -15,6 +16,7 @@
 #include "lod_select.h"
 #include "draw_instance.h"
 #include "near_raster.h"
+#include "work_order.h"
 
 // The width is the device's (near_raster.h): specialization constant 0.
 layout(local_size_x = kNearGroupSize, local_size_x_id = 0) in;
@@ -56,8 +58,9 @@ void main() {
     vec2 atlasSize = vec2(textureSize(atlas, 0));
     // z_clip is the near plane's distance for every point (camera.cpp's reversed, infinite projection).
     float nearPlane = frame.viewProj[3][2];
+    uint stride = workStride(total);
     for (uint item = gl_WorkGroupID.x; item < total; item += gl_NumWorkGroups.x) {
-        uvec4 listed = nearList[item];
+        uvec4 listed = nearList[workEntry(item, total, stride)];
         uint entry = listed.x;
         GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
         uvec4 mesh = nearMeshes[listed.y];

@@ -2,13 +2,16 @@
 // The near raster's first pass (near_raster.h): every vertex of each listed LOD draw moved and lit
 // once, as instance.vert does it, into the near raster's vertex buffer at the draw's range, which
 // the cull pass allotted. Each workgroup takes one listed draw at a time (indirect dispatch, then
-// every gl_NumWorkGroups-th), its threads striding over the LOD mesh's vertices. near_raster.comp
-// then reads three of them per triangle: shaded once rather than once per triangle that uses them.
+// every gl_NumWorkGroups-th slot; slots take draws in work_order.h's spread order), its threads
+// striding over the LOD mesh's vertices. near_raster.comp then reads three of them per triangle:
+// shaded once rather than once per triangle that uses them.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"
 #include "lod_select.h"
 #include "draw_instance.h"
 #include "near_raster.h"
+#include "work_order.h"
 #include "clump_vertex.glsl"
 
 // The width is the device's (near_raster.h): specialization constant 0.
@@ -56,8 +59,9 @@ NearVertex shadeVertex(uint index, GpuDrawInstance inst) {
 void main() {
     uint total = nearDispatch.count;
     vec2 size = frame.lodScreen.zw;
+    uint stride = workStride(total);
     for (uint item = gl_WorkGroupID.x; item < total; item += gl_NumWorkGroups.x) {
-        uvec4 listed = nearList[item];
+        uvec4 listed = nearList[workEntry(item, total, stride)];
         GpuDrawInstance inst = drawInstances[listed.x & kLodEntryIndexMask];
         uvec4 mesh = nearMeshes[listed.y];
         for (uint v = gl_LocalInvocationID.x; v < mesh.y; v += gl_WorkGroupSize.x) {
