@@ -1,6 +1,7 @@
-// The order in which the near raster's and the far field's workgroups take their lists' entries
-// (shaders/shared/work_order.h): a permutation of the list, which hands any contiguous run of
-// workgroups (lavapipe gives each of its threads one) entries from all over the list.
+// The order in which the near raster's two passes' workgroups take the draws of their list
+// (shaders/shared/work_order.h; the splat pass keeps the cull pass's order): a permutation of the
+// list, which hands any contiguous run of workgroups (lavapipe gives each of its threads one)
+// entries from all over the list.
 #include "work_order.h"
 
 #include <gtest/gtest.h>
