@@ -185,13 +185,28 @@ MEADOW_FAR_FN FarVec3 unpackRgb9e5(uint v) {
     return c;
 }
 
+// The share of `density` a far instance draws, from `surface`, its surface in pixels (the square of
+// the size the coverage gains' table is indexed by): all of it up to kFarTaperFrom px^2 (8 px of
+// size), kFarTaperShare of it from four times that (16 px), linear in between. Most of a frame's
+// samples belong to the larger far instances (in the default view 59 % to those above 12 px), whose
+// samples each cover less than a pixel even at the lower density; the smallest keep the full
+// density, as with fewer samples a clump a pixel or two across covered too much
+// (docs/BENCHMARKS.md). Products and sums only, so that C++ and GLSL count alike.
+MEADOW_FAR_FCONST kFarTaperFrom = 64.0f;
+MEADOW_FAR_FCONST kFarTaperShare = 0.6f;
+MEADOW_FAR_FN float farDensityShare(float surface) {
+    MEADOW_FAR_PRECISE float t = (surface - kFarTaperFrom) * (1.0f / (3.0f * kFarTaperFrom));
+    MEADOW_FAR_PRECISE float share = 1.0f - (1.0f - kFarTaperShare) * farMin(farMax(t, 0.0f), 1.0f);
+    return share;
+}
+
 // How many of a clump's `available` shuffled samples a far instance draws: `density` samples per
-// pixel of its surface's projected area. `area` is the surface (m^2, one side) and
-// `pixelsPerMetre` the focal length in pixels over the distance; a sheet seen at a random angle
-// shows half its area on average. At least 1, at most `available`.
+// pixel of its surface's projected area, tapered for larger instances (farDensityShare). `area` is
+// the surface (m^2, one side) and `pixelsPerMetre` the focal length in pixels over the distance; a
+// sheet seen at a random angle shows half its area on average. At least 1, at most `available`.
 MEADOW_FAR_FN uint farSampleCount(float area, float pixelsPerMetre, float density, uint available) {
-    MEADOW_FAR_PRECISE float projected = 0.5f * area * (pixelsPerMetre * pixelsPerMetre);
-    MEADOW_FAR_PRECISE float n = farCeil(density * projected);
+    MEADOW_FAR_PRECISE float surface = area * (pixelsPerMetre * pixelsPerMetre);
+    MEADOW_FAR_PRECISE float n = farCeil(density * farDensityShare(surface) * (0.5f * surface));
     return uint(farMax(1.0f, farMin(n, float(available))));
 }
 
@@ -229,11 +244,11 @@ MEADOW_FAR_CONST kFarGainSizes = 5u;
 MEADOW_FAR_CONST kFarGainElevations = 4u;
 MEADOW_FAR_FCONST kFarGainFirstSize = 2.0f; // px; bin i at kFarGainFirstSize * 2^i
 // The density the gains are measured at and the run time uses by default (samples per pixel of
-// projected surface; farSampleCount). About two thirds of an iris clump's samples are in sight from
-// some of a view's cell (the visibility bits below), so 5 leaves 3 for the surface that shows:
-// enough that the gains stay near 1 and each sample covers about its own share of the pixels. At 2
-// the gains rose to about 2.3, squares of 2x2 pixels took over and the far field came out 6-11 %
-// too bright at 1280x720 (docs/BENCHMARKS.md).
+// projected surface, before farDensityShare's taper; farSampleCount). About two thirds of an iris clump's samples are
+// in sight from some of a view's cell (the visibility bits below), so 5 leaves 3 for the surface that shows: enough
+// that the gains stay near 1 and each sample covers about its own share of the pixels. At 2 the gains rose to
+// about 2.3, squares of 2x2 pixels took over and the far field came out 6-11 % too bright at 1280x720
+// (docs/BENCHMARKS.md).
 MEADOW_FAR_FCONST kFarDefaultDensity = 5.0f;
 
 // The streams of the two random numbers that pick a sample's visibility view: index + stream (a

@@ -150,20 +150,40 @@ TEST(FarSplat, Rgb9e5MatchesTheVulkanConversion) {
 }
 
 TEST(FarSplat, SampleCountFollowsProjectedArea) {
-    // 0.2 m^2 of leaves seen at 100 px per metre: 1000 px of projected area, 2 samples per pixel.
-    EXPECT_EQ(farSampleCount(0.2f, 100.0f, 2.0f, 4096u), 2000u);
-    // Twice as far: a quarter.
-    EXPECT_EQ(farSampleCount(0.2f, 50.0f, 2.0f, 4096u), 500u);
+    // 0.2 m^2 of leaves seen at 15 px per metre: 45 px of surface (under the taper's 64), 22.5 px
+    // projected on average, 2 samples per pixel.
+    EXPECT_EQ(farSampleCount(0.2f, 15.0f, 2.0f, 4096u), 45u);
+    // Twice as far: a quarter (rounded up).
+    EXPECT_EQ(farSampleCount(0.2f, 7.5f, 2.0f, 4096u), 12u);
     // Never fewer than one, never more than the clump has.
     EXPECT_EQ(farSampleCount(0.2f, 0.01f, 2.0f, 4096u), 1u);
     EXPECT_EQ(farSampleCount(0.2f, 1000.0f, 2.0f, 4096u), 4096u);
-    // Non-increasing with distance.
+    // Non-increasing with distance, through the taper too.
     uint previous = 4096u;
     for (float ppm = 400.0f; ppm > 0.5f; ppm *= 0.97f) {
         const uint n = farSampleCount(0.2f, ppm, 2.0f, 4096u);
         EXPECT_LE(n, previous);
         previous = n;
     }
+}
+
+TEST(FarSplat, DensityTapersForLargerInstances) {
+    // The full density up to 64 px of surface (8 px of size), 0.6 of it from 256 px (16 px), linear
+    // in between and continuous at both ends.
+    EXPECT_EQ(farDensityShare(1.0f), 1.0f);
+    EXPECT_EQ(farDensityShare(kFarTaperFrom), 1.0f);
+    EXPECT_FLOAT_EQ(farDensityShare(2.5f * kFarTaperFrom), 0.8f);
+    EXPECT_FLOAT_EQ(farDensityShare(4.0f * kFarTaperFrom), kFarTaperShare);
+    EXPECT_FLOAT_EQ(farDensityShare(1e6f), kFarTaperShare);
+    for (float surface = 1.0f; surface < 1000.0f; surface *= 1.01f)
+        EXPECT_LE(farDensityShare(surface * 1.01f), farDensityShare(surface));
+    // 0.2 m^2 at 100 px per metre: 2,000 px of surface, 1,000 px projected, 2 x 0.6 per pixel.
+    EXPECT_NEAR(double(farSampleCount(0.2f, 100.0f, 2.0f, 4096u)), 1200.0, 1.0);
+    // Below the taper the count is the untapered one, bit for bit.
+    for (float ppm = 1.0f; ppm < 17.8f; ppm *= 1.03f)
+        EXPECT_EQ(farSampleCount(0.2f, ppm, 5.0f, 4096u),
+                  uint(std::max(1.0f, std::ceil(5.0f * (0.5f * 0.2f * (ppm * ppm))))))
+            << ppm;
 }
 
 TEST(FarSplat, FootprintFollowsAreaDistanceAndAngle) {
