@@ -244,11 +244,11 @@ MEADOW_FAR_CONST kFarGainSizes = 5u;
 MEADOW_FAR_CONST kFarGainElevations = 4u;
 MEADOW_FAR_FCONST kFarGainFirstSize = 2.0f; // px; bin i at kFarGainFirstSize * 2^i
 // The density the gains are measured at and the run time uses by default (samples per pixel of
-// projected surface, before farDensityShare's taper; farSampleCount). About two thirds of an iris clump's samples are
-// in sight from some of a view's cell (the visibility bits below), so 5 leaves 3 for the surface that shows: enough
-// that the gains stay near 1 and each sample covers about its own share of the pixels. At 2 the gains rose to
-// about 2.3, squares of 2x2 pixels took over and the far field came out 6-11 % too bright at 1280x720
-// (docs/BENCHMARKS.md).
+// projected surface, before farDensityShare's taper; farSampleCount). About two thirds of an iris
+// clump's samples are in sight from some of a view's cell (the visibility bits below), so 5 leaves
+// 3 for the surface that shows: enough that the gains stay near 1 and each sample covers about its
+// own share of the pixels. At 2 the gains rose to about 2.3, squares of 2x2 pixels took over and
+// the far field came out 6-11 % too bright at 1280x720 (docs/BENCHMARKS.md).
 MEADOW_FAR_FCONST kFarDefaultDensity = 5.0f;
 
 // The streams of the two random numbers that pick a sample's visibility view: index + stream (a

@@ -12,10 +12,11 @@
 # meadow_far_compare measures over the far field's region (where far or ref shows the far field):
 #   - against ref, the far field's own error: the issue's bounds, mean colour within MAX_COLOUR (3 %)
 #     and plant coverage ratio within COVERAGE (0.95 to 1.05); the three views of the three far.views
-#     tests measure 0.7-2.8 % and 0.964-1.016 (docs/BENCHMARKS.md, "The density tapered"; with the depth tested at the pixel's centre the high view was 3.9 % and
-#     0.965, and with every far instance drawing its clump's first samples the low view was 4.7 %
-#     too blue); SSIM at least the LOD 4 meshes' less 0.25 (the splats' pixel-scale noise, which
-#     7x7 SSIM windows weigh and the means do not);
+#     tests measure 0.7-2.8 % and 0.964-1.016 (docs/BENCHMARKS.md, "The density tapered"; with
+#     the depth tested at the pixel's centre the high view was 3.9 % and 0.965, and with every far
+#     instance drawing its clump's first samples the low view was 4.7 % too blue); SSIM at least
+#     the LOD 4 meshes' less 0.25 (the splats' pixel-scale noise, which 7x7 SSIM windows weigh and
+#     the means do not);
 #   - against the truth, which adds the LOD meshes' own difference from LOD 0 where nearer clumps
 #     overlap the region: colour within 35 %, coverage 0.8 to 1.2, the same SSIM bound.
 # And over every plant pixel of the frame (--lods 0,5), against the truth: the mean colour with the
