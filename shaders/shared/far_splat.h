@@ -187,15 +187,16 @@ MEADOW_FAR_FN FarVec3 unpackRgb9e5(uint v) {
 
 // The share of `density` a far instance draws, from `surface`, its surface in pixels (the square of
 // the size the coverage gains' table is indexed by): all of it up to kFarTaperFrom px^2 (8 px of
-// size), kFarTaperShare of it from four times that (16 px), linear in between. Most of a frame's
+// size), kFarTaperShare of it from kFarTaperTo (16 px), linear in between. Most of a frame's
 // samples belong to the larger far instances (in the default view 59 % to those above 12 px), whose
 // samples each cover less than a pixel even at the lower density; the smallest keep the full
 // density, as with fewer samples a clump a pixel or two across covered too much
 // (docs/BENCHMARKS.md). Products and sums only, so that C++ and GLSL count alike.
 MEADOW_FAR_FCONST kFarTaperFrom = 64.0f;
+MEADOW_FAR_FCONST kFarTaperTo = 256.0f;
 MEADOW_FAR_FCONST kFarTaperShare = 0.6f;
 MEADOW_FAR_FN float farDensityShare(float surface) {
-    MEADOW_FAR_PRECISE float t = (surface - kFarTaperFrom) * (1.0f / (3.0f * kFarTaperFrom));
+    MEADOW_FAR_PRECISE float t = (surface - kFarTaperFrom) * (1.0f / (kFarTaperTo - kFarTaperFrom));
     MEADOW_FAR_PRECISE float share = 1.0f - (1.0f - kFarTaperShare) * farMin(farMax(t, 0.0f), 1.0f);
     return share;
 }

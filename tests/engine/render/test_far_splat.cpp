@@ -172,8 +172,8 @@ TEST(FarSplat, DensityTapersForLargerInstances) {
     // in between and continuous at both ends.
     EXPECT_EQ(farDensityShare(1.0f), 1.0f);
     EXPECT_EQ(farDensityShare(kFarTaperFrom), 1.0f);
-    EXPECT_FLOAT_EQ(farDensityShare(2.5f * kFarTaperFrom), 0.8f);
-    EXPECT_FLOAT_EQ(farDensityShare(4.0f * kFarTaperFrom), kFarTaperShare);
+    EXPECT_FLOAT_EQ(farDensityShare(0.5f * (kFarTaperFrom + kFarTaperTo)), 0.8f);
+    EXPECT_FLOAT_EQ(farDensityShare(kFarTaperTo), kFarTaperShare);
     EXPECT_FLOAT_EQ(farDensityShare(1e6f), kFarTaperShare);
     for (float surface = 1.0f; surface < 1000.0f; surface *= 1.01f)
         EXPECT_LE(farDensityShare(surface * 1.01f), farDensityShare(surface));

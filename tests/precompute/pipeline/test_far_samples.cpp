@@ -661,10 +661,10 @@ TEST(FarSamples, CoverageGainCountsOnlyTheSamplesAViewSees) {
     // From 0 and 30 degrees up. (From 60 degrees, the views' cells that look along the sheets see
     // into the 5 cm between them, from above or past their ends, so most of the hind one's samples
     // are in sight from part of those cells and keep their bits; straight above, the upright sheets
-    // cover nothing either way.) Up to 16 px: at 32 px the density is tapered (farDensityShare) and
-    // this opaque pair's gains, 3.7 seen and 4.4 all, both take its facing samples past 2.25 px, where
-    // each covers a square of 2x2 pixels and the coverage jumps with the gain: both bisections end
-    // at that jump, whatever the samples in sight.
+    // cover nothing either way.) Up to 16 px: at 32 px the density is tapered (farDensityShare)
+    // and this opaque pair's gains, 3.7 seen and 4.4 all, both take its facing samples past 2.25
+    // px, where each covers a square of 2x2 pixels and the coverage jumps with the gain: both
+    // bisections end at that jump, whatever the samples in sight.
     for (uint32_t size = 0; size + 1 < gpu::kFarGainSizes; ++size)
         for (uint32_t elevation = 0; elevation < 2; ++elevation) {
             const uint32_t at = size * gpu::kFarGainElevations + elevation;
