@@ -3,7 +3,7 @@
 #include "common.glsl"
 
 MEADOW_FRAME_BLOCK(0, 0)
-// How much light reaches the ground under and around the clumps (ground_map.frag), over the
+// How much light reaches the ground under and around the clumps (ground_map.comp), over the
 // field's rectangle (frame.groundMap); open ground outside it.
 layout(set = 0, binding = 2) uniform sampler2D groundMap;
 

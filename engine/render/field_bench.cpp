@@ -38,7 +38,7 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     state.height = options.height;
     uint64_t uploadMin = UINT64_MAX, uploadMax = 0;
     uint32_t lightRuns = 0;
-    std::vector<double> frameMs, cpuMs, lightMs, groundMapMs;
+    std::vector<double> frameMs, cpuMs, lightMs, groundMapMs, lightFrameMs;
     std::map<std::string, std::vector<double>> passMs;
     for (uint32_t i = 0; i < kFieldBenchWarmUp + options.frames; ++i) {
         // A moving day, a minute of daylight per second (a day in 24 minutes): the light pass
@@ -69,8 +69,10 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
             if (p.label == "farSplat")
                 far += p.milliseconds;
         }
-        if (renderer.lightThisFrame)
+        if (renderer.lightThisFrame) {
             lightMs.push_back(light);
+            lightFrameMs.push_back(t.wallMs);
+        }
         passMs["total"].push_back(total);
         if (renderer.farField)
             passMs["far"].push_back(far); // the splat pass (its resolve is the tone map pass)
@@ -84,9 +86,10 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     j["gpuMs"] = gpuMs;
     // The light pass runs when the sky has moved enough (FieldRenderer::lightThisFrame): msWhenRun
     // is its two dispatches together (light.comp, then the ground light map's gather, timed alone
-    // as groundMapMsWhenRun).
+    // as groundMapMsWhenRun); frameMsWhenRun is the median frame among those that ran it.
     j["lightPass"] = {{"framesRun", lightRuns},
                       {"msWhenRun", percentile(lightMs, 0.5)},
+                      {"frameMsWhenRun", percentile(lightFrameMs, 0.5)},
                       {"groundMapMsWhenRun", percentile(groundMapMs, 0.5)}};
     // Recording and submitting, plus (CPU-driven) stepping, culling and filling the uploads.
     j["cpuMsPerFrame"] = percentile(cpuMs, 0.5);

@@ -161,7 +161,7 @@ void packLight(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
     const uint32_t variants = 2 * clump.yawBins;
     g.light = gpu::uvec4(uint32_t(p.lightVec4s), clump.yawBins, transferBase, vertexCount);
     p.lightVec4s += uint64_t(vertexCount) * variants * gpu::kLightVec4sPerVertex;
-    p.lightVertices.push_back(vertexCount * variants);
+    p.lightVertices.push_back(vertexCount);
     const float range = clump.yawHigh - clump.yawLow;
     g.yawBins = range > 0.0f ? glm::vec4(clump.yawLow, float(clump.yawBins) / range, range / float(clump.yawBins), 0.0f)
                              : glm::vec4(clump.yawLow, 0.0f, 0.0f, 0.0f);
@@ -172,7 +172,7 @@ void packLight(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
         for (float t : clump.groundTransfer)
             p.transfer.insert(p.transfer.end(), {t, 0.0f, 0.0f, 0.0f});
         p.lightVec4s += uint64_t(points) * variants;
-        p.lightVertices.back() += points * variants;
+        p.lightVertices.back() += points;
         g.yawBins.w = clump.groundSize;
     }
 }

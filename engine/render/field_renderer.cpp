@@ -219,7 +219,7 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     deviceBuffer(r.motionData, p.motionData.data(), p.motionData.size() * sizeof(float),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     deviceBuffer(r.motionGraph, p.motionGraph.data(), p.motionGraph.size() * sizeof(uint32_t));
-    deviceBuffer(r.transfer, p.transfer.data(), p.transfer.size() * sizeof(float));
+    deviceBuffer(r.transfer, p.transfer.data(), p.transfer.size() * sizeof(float), texels);
     deviceBuffer(r.vertexLight, nullptr, size_t(p.lightVec4s) * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     deviceBuffer(r.skyData, skyData.data(), skyData.size() * sizeof(float));
     r.indices = createBuffer(ctx, p.indices.size() * sizeof(uint32_t),
@@ -247,6 +247,7 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     }
     if (r.nearRasterOn)
         r.indexTexels = createTexelBufferView(ctx, r.indices, VK_FORMAT_R32_UINT, 4, "the LOD meshes' indices");
+    r.transferTexels = createTexelBufferView(ctx, r.transfer, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "the light transfer");
     r.vertexLightTexels =
         createTexelBufferView(ctx, r.vertexLight, VK_FORMAT_R32G32B32A32_UINT, 16, "the vertex light");
     deviceBuffer(r.groundTexelStart, ground.texelStart.data(), ground.texelStart.size() * sizeof(uint32_t), texels);
@@ -344,8 +345,9 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.skyBlend, &r.ground, &r.instance,
                         &r.groundMap, &r.farSplat, &r.farResolve, &r.nearVertices, &r.nearRaster})
         destroyPipeline(ctx, *p);
-    for (VkBufferView* view : {&r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.vertexLightTexels,
-                               &r.groundTexelStartTexels, &r.groundEntryTexels, &r.indexTexels, &r.nearShadedTexels})
+    for (VkBufferView* view :
+         {&r.transferTexels, &r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.vertexLightTexels,
+          &r.groundTexelStartTexels, &r.groundEntryTexels, &r.indexTexels, &r.nearShadedTexels})
         if (*view) {
             vkDestroyBufferView(ctx.device, *view, nullptr);
             *view = VK_NULL_HANDLE;
@@ -552,7 +554,13 @@ void recordCullPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
 // compute passes' results (the cull's draws and draw records, the light) to everything drawn.
 void recordLightPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
     if (r.lightThisFrame) {
-        bindPipeline(ctx, cmd, r.light, {r.frameUniforms, r.clumps, r.transfer, r.skyData, r.vertexLight});
+        // The previous frame's passes read the vertex light this pass writes again. (On lavapipe
+        // the barrier also ends the command stream's batch, so that the cull pass's timestamp is
+        // written before these dispatches run and not after them.)
+        barrier(cmd, access::kVertexShaderRead | access::kFragmentShaderRead | access::kComputeRead,
+                access::kComputeWrite);
+        bindPipeline(ctx, cmd, r.light,
+                     {r.frameUniforms, r.clumps, Binding(r.transferTexels), r.skyData, r.vertexLight});
         for (uint32_t c = 0; c < r.clumpCount; ++c) {
             pushConstants(ctx, cmd, r.light, &c, sizeof(uint32_t));
             dispatchCovering(cmd, r.light, r.lightVertices[c]);

@@ -164,6 +164,7 @@ struct FieldRenderer {
     // vertexLight seen as texel buffers, as the ground light map reads it (ground_map.comp); with the
     // far field also farSamples, lodVertices and motionData, as the splat pass reads them
     // (far_splat.comp).
+    VkBufferView transferTexels = VK_NULL_HANDLE; // the light transfer, as the light pass reads it
     VkBufferView farSampleTexels = VK_NULL_HANDLE;
     VkBufferView lodVertexTexels = VK_NULL_HANDLE;
     VkBufferView motionTexels = VK_NULL_HANDLE;
@@ -216,7 +217,7 @@ struct FieldRenderer {
     std::vector<uint32_t> drawCapacity;  // per draw bucket: the instances its visible range holds
     uint64_t lodVertexCount = 0;
     uint64_t visibleCount = 0;
-    std::vector<uint32_t> lightVertices; // per clump: vertices x variants (light.comp threads)
+    std::vector<uint32_t> lightVertices; // per clump: vertices + ground points (light.comp threads)
     uint32_t terrainIndexCount = 0;
     glm::vec4 mirrorNormal{0.0f, 0.0f, 1.0f, 0.0f}; // push constant of the instance pipeline
     float windAzimuth = 0.0f;

@@ -93,7 +93,10 @@ TEST(RayScene, UpdatedPositionsMoveTheHits) {
     RayScene scene(false);
     scene.setMesh(kTrianglePositions, kTriangleIndices);
     const Ray ray = downFrom({0.25f, 3.0f, 0.5f});
-    ASSERT_EQ(scene.intersect(ray).triangle, 0u);
+    const RayHit first = scene.intersect(ray);
+    ASSERT_EQ(first.triangle, 0u);
+    // Embree's answer may differ from 2 in the last bit with the CPU's instruction set.
+    EXPECT_NEAR(first.t, 2.0f, kHitTolerance);
 
     std::vector<glm::vec3> moved = kTrianglePositions;
     for (glm::vec3& p : moved)
@@ -108,7 +111,7 @@ TEST(RayScene, UpdatedPositionsMoveTheHits) {
     scene.updatePositions(kTrianglePositions);
     const RayHit again = scene.intersect(ray);
     EXPECT_EQ(again.triangle, 0u);
-    EXPECT_EQ(again.t, 2.0f);
+    EXPECT_EQ(again.t, first.t);
 }
 
 TEST(RayScene, ClosedCubeDoesNotLeakThroughEdgesOrCorners) {
