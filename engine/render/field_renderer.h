@@ -161,10 +161,10 @@ struct FieldRenderer {
     Buffer drawCommandTemplate; // the same with instanceCount 0: copied over them every frame
     Buffer visibleList;
     Buffer farSamples; // gpu::GpuFarSample, per clump its shuffled samples
-    // vertexLight seen as texel buffers, as the ground light map reads it (ground_map.comp); with the
-    // far field also farSamples, lodVertices and motionData, as the splat pass reads them
-    // (far_splat.comp).
-    VkBufferView transferTexels = VK_NULL_HANDLE; // the light transfer, as the light pass reads it
+    // transfer and vertexLight seen as texel buffers, as the light pass (light.comp) and the ground
+    // light map (ground_map.comp) read them; with the far field also farSamples, lodVertices and
+    // motionData, as the splat pass reads them (far_splat.comp).
+    VkBufferView transferTexels = VK_NULL_HANDLE;
     VkBufferView farSampleTexels = VK_NULL_HANDLE;
     VkBufferView lodVertexTexels = VK_NULL_HANDLE;
     VkBufferView motionTexels = VK_NULL_HANDLE;
