@@ -27,6 +27,7 @@
 
 #ifdef __cplusplus
 #include <algorithm>
+#include <bit>
 #include <cmath>
 namespace meadow::gpu {
 using vec2 = glm::vec2;
@@ -45,6 +46,9 @@ inline float nearAbs(float x) {
 inline float nearFloorF(float x) {
     return std::floor(x);
 }
+inline int nearLowestBit(int x) {
+    return std::countr_zero(unsigned(x));
+}
 #else
 #define MEADOW_NEAR_CONST const uint
 #define MEADOW_NEAR_FCONST const float
@@ -53,6 +57,7 @@ inline float nearFloorF(float x) {
 #define nearMaxInt(a, b) max(a, b)
 #define nearAbs(x) abs(x)
 #define nearFloorF(x) floor(x)
+#define nearLowestBit(x) findLSB(x)
 #endif
 
 // Subpixels: the largest box side whose edge functions (products of two box-relative coordinates)
@@ -84,10 +89,12 @@ MEADOW_NEAR_FN int nearSubpixelFor(float r) {
 // only then does the order the instances are culled in choose which are drawn where).
 MEADOW_NEAR_CONST kNearMaxVertices = 1u << 21u;
 
-// Floor of a / b for b > 0 (C++ and GLSL's integer division truncates towards zero).
-MEADOW_NEAR_FN int nearFloorDiv(int a, int b) {
-    int q = a / b;
-    return (q * b > a) ? q - 1 : q;
+// The exponent of a grid `sub` (a power of two, as nearSubpixelFor gives): floor(a / sub) is then
+// a >> nearGridShift(sub), an arithmetic shift in C++ (20) and GLSL alike. SIMD units have no
+// integer division: llvmpipe divides lane by lane, six times per triangle in nearSetUp before it
+// shifted (docs/BENCHMARKS.md, "The near raster's divisions as shifts").
+MEADOW_NEAR_FN int nearGridShift(int sub) {
+    return nearLowestBit(sub);
 }
 
 // floor(a / b) for b > 0 and |a| < 2^30, by a float division corrected to the exact quotient: SIMD
@@ -187,7 +194,7 @@ MEADOW_NEAR_FN int nearEdgeValue(NearEdge e, int col) {
 struct NearTriangle {
     bool drawn; // false: degenerate, outside the picture or larger than kNearMaxSpan
     bool swapped;
-    int sub; // subpixels to the pixel
+    int sub; // subpixels to the pixel, a power of two (nearSubpixelFor)
     int originX, originY;
     int x0, y0, x1, y1, x2, y2; // subpixels from the origin
     int area;                   // twice the area, in subpixels squared
@@ -216,8 +223,9 @@ MEADOW_NEAR_FN NearTriangle nearSetUp(vec2 p0, vec2 p1, vec2 p2, int width, int 
     int minY = nearMinInt(sy0, nearMinInt(sy1, sy2)), maxY = nearMaxInt(sy0, nearMaxInt(sy1, sy2));
     if (maxX - minX > int(kNearMaxSpan) || maxY - minY > int(kNearMaxSpan))
         return t;
-    t.originX = nearFloorDiv(minX, sub);
-    t.originY = nearFloorDiv(minY, sub);
+    const int shift = nearGridShift(sub);
+    t.originX = minX >> shift;
+    t.originY = minY >> shift;
     t.x0 = sx0 - t.originX * sub;
     t.y0 = sy0 - t.originY * sub;
     t.x1 = sx1 - t.originX * sub;
@@ -237,10 +245,10 @@ MEADOW_NEAR_FN NearTriangle nearSetUp(vec2 p0, vec2 p1, vec2 p2, int width, int 
         t.swapped = true;
     }
     // Pixel centres (p + 1/2) within [min, max], then within the picture, relative to the origin.
-    t.colLo = nearMaxInt(-nearFloorDiv(sub / 2 - (minX - t.originX * sub), sub), -t.originX);
-    t.colHi = nearMinInt(nearFloorDiv(maxX - t.originX * sub - sub / 2, sub), width - 1 - t.originX);
-    t.rowLo = nearMaxInt(-nearFloorDiv(sub / 2 - (minY - t.originY * sub), sub), -t.originY);
-    t.rowHi = nearMinInt(nearFloorDiv(maxY - t.originY * sub - sub / 2, sub), height - 1 - t.originY);
+    t.colLo = nearMaxInt(-((sub / 2 - (minX - t.originX * sub)) >> shift), -t.originX);
+    t.colHi = nearMinInt((maxX - t.originX * sub - sub / 2) >> shift, width - 1 - t.originX);
+    t.rowLo = nearMaxInt(-((sub / 2 - (minY - t.originY * sub)) >> shift), -t.originY);
+    t.rowHi = nearMinInt((maxY - t.originY * sub - sub / 2) >> shift, height - 1 - t.originY);
     t.drawn = t.colLo <= t.colHi && t.rowLo <= t.rowHi;
     return t;
 }
@@ -252,6 +260,7 @@ MEADOW_NEAR_FN NearTriangle nearSetUp(vec2 p0, vec2 p1, vec2 p2, int width, int 
 #undef nearMaxInt
 #undef nearAbs
 #undef nearFloorF
+#undef nearLowestBit
 #endif
 #undef MEADOW_NEAR_CONST
 #undef MEADOW_NEAR_FCONST

@@ -84,12 +84,13 @@ TEST(NearRaster, QuotientIsExactWithoutIntegerDivision) {
 }
 
 // Random triangles of every size the raster takes, on each subpixel grid, some reaching off the
-// picture: the spans cover exactly the pixels the edge test does.
+// picture (where the set-up's shifts must floor negative coordinates): the spans cover exactly the
+// pixels the edge test does.
 TEST(NearRaster, SpansCoverExactlyThePixelsTheEdgeTestCovers) {
     std::mt19937 rng(11);
     const int width = 96, height = 64;
     size_t covered = 0;
-    for (int sub : {256, 64, 16}) {
+    for (int sub : {256, 64, 16, 8}) {
         const float reach = float(gpu::kNearMaxSpan / uint32_t(sub)) * 0.45f; // boxes within the grid's limit
         std::uniform_real_distribution<float> centre(-10.0f, 106.0f), offset(-reach, reach), unit(0.0f, 1.0f);
         for (int i = 0; i < 3000; ++i) {
