@@ -53,7 +53,7 @@ void main() {
     bool blending = inst.pose.z > 0.0;
     vec3 d = vec3(0.0);
     for (uint k = 0u; k < rank; ++k) {
-        uint row = v.motion.x + 3u * k;
+        uint row = 4u * (v.motion.x + k);
         float q = motionData[q0 + k];
         if (blending)
             q = mix(q, motionData[q1 + k], inst.pose.z);

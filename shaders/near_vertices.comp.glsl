@@ -26,6 +26,7 @@ layout(set = 0, binding = 5) uniform usamplerBuffer lodVertices; // GpuLodVertex
 layout(set = 0, binding = 6) uniform samplerBuffer motionData;
 layout(set = 0, binding = 7) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 8, std430) writeonly buffer NearVertices { uvec4 nearVertices[]; }; // 2 per vertex
+layout(set = 0, binding = 9) uniform samplerBuffer motionRows; // motionData's basis rows, a texel each
 #include "clump_motion.glsl"
 layout(push_constant) uniform NearParams { vec4 mirrorNormal; }; // as instance.vert's
 

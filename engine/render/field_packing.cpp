@@ -36,13 +36,20 @@ void appendUnshadowedTransfer(const Mesh& mesh, std::vector<float>& out) {
     }
 }
 
-// A clump's basis rows and coordinates into motionData: GpuClump::motion.
+// A clump's basis rows and coordinates into motionData: GpuClump::motion. Each basis row (a mode's
+// x, y, z for one vertex) takes 4 floats, the last 0, on a 4-float boundary, so that the compute
+// passes fetch it as one RGBA32F texel (motionRowTexels) rather than three floats: llvmpipe pays a
+// gather per fetch (docs/BENCHMARKS.md, "The motion rows as one texel"). `basisBase` is the clump's
+// first row, in rows of 4 floats.
 void packMotion(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g, uint32_t& basisBase) {
     const MotionBasis& motion = clump.motion;
     const bool moving = motion.frames > 0;
-    basisBase = uint32_t(p.motionData.size());
+    p.motionData.resize((p.motionData.size() + 3) / 4 * 4, 0.0f);
+    basisBase = uint32_t(p.motionData.size() / 4);
     if (moving)
-        p.motionData.insert(p.motionData.end(), motion.basis.begin(), motion.basis.end());
+        for (size_t row = 0; row + 2 < motion.basis.size(); row += 3)
+            p.motionData.insert(p.motionData.end(),
+                                {motion.basis[row], motion.basis[row + 1], motion.basis[row + 2], 0.0f});
     const uint32_t coordBase = uint32_t(p.motionData.size());
     if (moving)
         p.motionData.insert(p.motionData.end(), motion.coords.begin(), motion.coords.end());
@@ -92,7 +99,7 @@ uint32_t packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount,
                                  gpu::uvec4(0u, 0u, v, l << 16)};
             if (moving) {
                 const MotionBlock& block = motion.blocks[motion.vertexBlock[v]];
-                lv.motion = gpu::uvec4(basisBase + motion.vertexRowOffset[v], block.coordOffset, v,
+                lv.motion = gpu::uvec4(basisBase + motion.vertexRowOffset[v] / 3, block.coordOffset, v,
                                        block.ranks[std::min(l, kLodCount - 1)] | (l << 16));
             }
             p.lodVertices.push_back(lv);

@@ -20,7 +20,7 @@ glm::vec3 clumpVertexDisplacement(const std::vector<float>& motionData, const gl
     const bool blending = inst.pose.z > 0.0f;
     glm::vec3 d(0.0f);
     for (uint32_t k = 0; k < rank; ++k) {
-        const uint32_t row = motion.x + 3u * k;
+        const uint32_t row = 4u * (motion.x + k);
         float q = at(q0 + k, "motion coordinate");
         if (blending)
             q = glm::mix(q, at(q1 + k, "motion coordinate"), inst.pose.z);

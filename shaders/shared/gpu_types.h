@@ -143,9 +143,9 @@ struct GpuFarSample {
 struct GpuLodVertex {
     vec4 positionU; // xyz mean position (clump space), w texture u
     vec4 normalV;   // xyz mean normal, w texture v
-    uvec4 motion;   // x first basis value in motionData (3 per mode), y the vertex's first coordinate in a
-                    // frame of q, z clump-local vertex index (its light), w modes at this LOD (low 16
-                    // bits) and the LOD (high 16 bits)
+    uvec4 motion;   // x first basis row in motionData, in rows of 4 floats (one per mode: x, y, z, 0), y
+                    // the vertex's first coordinate in a frame of q, z clump-local vertex index (its
+                    // light), w modes at this LOD (low 16 bits) and the LOD (high 16 bits)
 };
 
 // One instance's walk, integers only (16 bytes; std430 and std140 compatible). The vertex shader
