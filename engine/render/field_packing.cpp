@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <glm/gtc/packing.hpp>
 
 namespace meadow {
 
@@ -322,6 +323,18 @@ std::vector<float> packSkyDay(const sky::SkyDay& day) {
         std::copy(frame.image.begin(), frame.image.end(), out + gpu::kSkyFrameHeaderFloats);
     }
     return skyData;
+}
+
+std::vector<uint16_t> packAtlas(const RgbaImage& atlas) {
+    uint16_t linear[256], alpha[256];
+    for (uint32_t byte = 0; byte < 256; ++byte) {
+        linear[byte] = uint16_t(glm::packHalf1x16(srgbByteToLinear(byte)));
+        alpha[byte] = uint16_t(glm::packHalf1x16(float(byte) / 255.0f));
+    }
+    std::vector<uint16_t> texels(atlas.rgba.size());
+    for (size_t i = 0; i < texels.size(); ++i)
+        texels[i] = i % 4 == 3 ? alpha[atlas.rgba[i]] : linear[atlas.rgba[i]];
+    return texels;
 }
 
 } // namespace meadow

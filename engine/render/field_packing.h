@@ -46,6 +46,12 @@ void checkFieldClump(const FieldClump& clump, size_t index, uint32_t lodCount);
 FieldPacking packField(std::span<const FieldClump> clumps, std::span<const gpu::GpuInstance> instances,
                        uint32_t lodCount);
 
+// The atlas as the renderer samples it (VK_FORMAT_R16G16B16A16_SFLOAT): each 8-bit sRGB colour
+// channel decoded to linear, each alpha to [0, 1], as half floats. Filtering then needs no decode
+// per texel: llvmpipe decodes each of a trilinear sample's eight texels of an 8-bit sRGB format
+// before filtering (docs/BENCHMARKS.md, "The atlas stored linear").
+std::vector<uint16_t> packAtlas(const RgbaImage& atlas);
+
 // The sky day for the skyData buffer: per frame its SH, sun and backdrop (gpu::kSkyFrameHeaderFloats
 // then the image). Throws meadow::Error for a frame of the wrong size.
 size_t skyFrameFloats(const sky::SkyDay& day);

@@ -181,7 +181,7 @@ void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size
         p.indices.size() * sizeof(uint32_t) + (p.motionData.size() + p.transfer.size()) * sizeof(float) +
         p.motionGraph.size() * sizeof(uint32_t) + p.lightVec4s * 16 +
         skyFrameFloats(day) * day.frames.size() * sizeof(float) +
-        2 * p.draws.size() * sizeof(gpu::GpuDrawIndexedCommand) + uint64_t(atlas.width) * atlas.height * 4 +
+        2 * p.draws.size() * sizeof(gpu::GpuDrawIndexedCommand) + uint64_t(atlas.width) * atlas.height * 8 +
         uint64_t(mapSize.width) * mapSize.height * 8 + uint64_t(day.imageWidth) * day.imageHeight * 8 +
         scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex) + scenery.terrain.indices.size() * sizeof(uint32_t) +
         p.farSamples.size() * sizeof(gpu::GpuFarSample) + uint64_t(instanceCount) * 8 + sizeof(gpu::GpuFarDispatch) +
@@ -283,7 +283,9 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
         createBuffer(ctx, sizeof(gpu::GpuCullStats) + drawBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
     const std::vector<uint8_t> zeros(r.statsReadback.size, 0);
     writeMapped(ctx, r.statsReadback, zeros.data(), zeros.size());
-    r.atlas = createTexture(ctx, {atlas.width, atlas.height}, VK_FORMAT_R8G8B8A8_SRGB, atlas.rgba.data());
+    const std::vector<uint16_t> atlasTexels = packAtlas(atlas);
+    r.atlas = createTexture(ctx, {atlas.width, atlas.height}, VK_FORMAT_R16G16B16A16_SFLOAT, atlasTexels.data(),
+                            4 * sizeof(uint16_t));
     r.sampler = createLinearSampler(ctx);
     r.atlasSampler = createLinearSampler(ctx, atlasMaxLod(atlas.width));
     r.pointSampler = createNearestSampler(ctx);

@@ -1,5 +1,6 @@
 #include "render/near_reference.h"
 
+#include "render/field_packing.h"
 #include "render/reference_motion.h"
 
 #include "core/error.h"
@@ -70,11 +71,6 @@ Shaded shadeVertex(const NearRasterInputs& in, uint32_t index, const gpu::GpuDra
     return o;
 }
 
-float srgbToLinear(uint8_t byte) {
-    const float c = float(byte) / 255.0f;
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
 } // namespace
 
 std::vector<uint64_t> nearRasterReference(const NearRasterInputs& in) {
@@ -89,8 +85,10 @@ std::vector<uint64_t> nearRasterReference(const NearRasterInputs& in) {
     for (size_t i = 4; i < in.atlas.rgba.size(); ++i)
         if (in.atlas.rgba[i] != in.atlas.rgba[i % 4])
             throw Error("nearRasterReference: only a uniform atlas is modelled");
-    const glm::vec4 atlasTexel(srgbToLinear(in.atlas.rgba[0]), srgbToLinear(in.atlas.rgba[1]),
-                               srgbToLinear(in.atlas.rgba[2]), float(in.atlas.rgba[3]) / 255.0f);
+    // The texel as the renderer stores it (field_packing.h: linear, half floats).
+    const std::vector<uint16_t> texel = packAtlas(RgbaImage{1, 1, {in.atlas.rgba.begin(), in.atlas.rgba.begin() + 4}});
+    const glm::vec4 atlasTexel(glm::unpackHalf1x16(texel[0]), glm::unpackHalf1x16(texel[1]),
+                               glm::unpackHalf1x16(texel[2]), glm::unpackHalf1x16(texel[3]));
     const uint64_t empty = (uint64_t(gpu::kFarEmpty) << 32) | gpu::kFarEmpty;
     std::vector<uint64_t> visibility(size_t(width) * size_t(height), empty);
     const float nearPlane = frame.viewProj[3][2];

@@ -227,7 +227,7 @@ void uploadToBuffer(Context& ctx, const Buffer& destination, const void* data, V
     destroyBuffer(ctx, staging);
 }
 
-Image createTexture(Context& ctx, VkExtent2D extent, VkFormat format, const void* rgba) {
+Image createTexture(Context& ctx, VkExtent2D extent, VkFormat format, const void* texels, uint32_t texelBytes) {
     uint32_t mips = 1;
     while ((extent.width >> mips) > 0 || (extent.height >> mips) > 0)
         ++mips;
@@ -241,9 +241,9 @@ Image createTexture(Context& ctx, VkExtent2D extent, VkFormat format, const void
     Image image = createImage2D(
         ctx, extent, format,
         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, mips);
-    VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * 4;
+    VkDeviceSize bytes = VkDeviceSize(extent.width) * extent.height * texelBytes;
     Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
-    writeMapped(ctx, staging, rgba, bytes);
+    writeMapped(ctx, staging, texels, bytes);
     const Access sampled{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
     submitAndWait(ctx, [&](VkCommandBuffer cmd) {
         auto mipBarrier = [&](uint32_t mip, Access before, VkImageLayout from, Access after, VkImageLayout to) {

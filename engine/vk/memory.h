@@ -100,9 +100,10 @@ void* hostWriteAt(Context& context, const Buffer& buffer, VkDeviceSize offset, V
 // Copies `size` bytes into a device-local buffer through a temporary staging buffer and waits.
 void uploadToBuffer(Context& context, const Buffer& destination, const void* data, VkDeviceSize size,
                     VkDeviceSize destinationOffset = 0);
-// A sampled texture from tightly packed 8-bit RGBA texels, with a full mip chain made by
-// linear blits; left in SHADER_READ_ONLY_OPTIMAL for fragment shaders. Waits for the copy.
-Image createTexture(Context& context, VkExtent2D extent, VkFormat format, const void* rgba);
+// A sampled texture from tightly packed texels of `texelBytes` each in `format`, with a full mip
+// chain made by linear blits; left in SHADER_READ_ONLY_OPTIMAL for fragment shaders. Waits for the
+// copy.
+Image createTexture(Context& context, VkExtent2D extent, VkFormat format, const void* texels, uint32_t texelBytes);
 
 // A trilinear sampler that clamps to the edge (atlas regions must not bleed across the border),
 // reading mip levels up to `maxLod`.
