@@ -16,7 +16,9 @@
 layout(local_size_x = kFarResolveGroupSize, local_size_y = kFarResolveGroupSize) in;
 
 MEADOW_FRAME_BLOCK(0, 0)
-layout(set = 0, binding = 1, std430) readonly buffer Visibility { uint64_t visibility[]; };
+// The visibility buffer's words as (low, high) texels: a texel fetch where llvmpipe would load a
+// storage buffer lane by lane (docs/BENCHMARKS.md, "The resolve reads the words as texels").
+layout(set = 0, binding = 1) uniform usamplerBuffer visibility;
 layout(set = 0, binding = 2, rgba16f) uniform image2D hdrImage;
 layout(set = 0, binding = 3) uniform sampler2D meshDepth;
 layout(set = 0, binding = 4, rgba8) uniform writeonly image2D ldrImage;
@@ -26,7 +28,7 @@ void main() {
     ivec2 size = imageSize(hdrImage);
     if (p.x >= size.x || p.y >= size.y)
         return;
-    uvec2 word = unpackUint2x32(visibility[uint(p.y) * uint(size.x) + uint(p.x)]);
+    uvec2 word = texelFetch(visibility, p.y * size.x + p.x).xy;
     vec3 radiance;
     // The meshes' depth at the pixel and its four neighbours (clamped at the image's edges).
     ivec2 last = size - 1;

@@ -666,8 +666,8 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeReadWrite, VK_IMAGE_LAYOUT_GENERAL);
-    // The previous frame's resolve read the visibility buffer.
-    barrier(cmd, access::kComputeRead, access::kTransferWrite);
+    // The previous frame's resolve read the visibility buffer (as texels).
+    barrier(cmd, access::kComputeSampledRead, access::kTransferWrite);
     vkCmdFillBuffer(cmd, t.farVisibility.buffer, 0, VK_WHOLE_SIZE, gpu::kFarEmpty);
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
     if (r.nearRasterOn) {
@@ -707,10 +707,11 @@ void recordTonemapPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, cons
     imageBarrier(cmd, t.ldr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kComputeReadWrite | access::kTransferRead,
                  VK_IMAGE_LAYOUT_UNDEFINED, access::kComputeWrite, VK_IMAGE_LAYOUT_GENERAL);
     if (farRuns(r)) {
-        // The HDR image is in GENERAL since the far pass; wait for the splat pass's atomics.
-        barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite);
+        // The HDR image is in GENERAL since the far pass; wait for the splat pass's atomics, whose
+        // words the resolve reads as texels.
+        barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite | access::kComputeSampledRead);
         bindPipeline(ctx, cmd, r.farResolve,
-                     {r.frameUniforms, t.farVisibility, Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL),
+                     {r.frameUniforms, Binding(t.farVisibilityTexels), Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL),
                       Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler),
                       Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
         dispatchCovering(cmd, r.farResolve, t.extent.width, t.extent.height);

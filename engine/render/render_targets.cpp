@@ -63,8 +63,10 @@ RenderTargets createRenderTargets(Context& ctx, VkExtent2D extent) {
     t.ldr = createImage2D(ctx, extent, kLdrFormat, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     t.farVisibility = createBuffer(ctx, VkDeviceSize(extent.width) * extent.height * sizeof(uint64_t),
                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
                                    MemoryUse::Device);
+    t.farVisibilityTexels =
+        createTexelBufferView(ctx, t.farVisibility, VK_FORMAT_R32G32_UINT, 8, "the visibility buffer");
     return t;
 }
 
@@ -72,6 +74,8 @@ void destroyRenderTargets(Context& ctx, RenderTargets& t) {
     destroyImage(ctx, t.hdr);
     destroyImage(ctx, t.depth);
     destroyImage(ctx, t.ldr);
+    if (t.farVisibilityTexels)
+        vkDestroyBufferView(ctx.device, t.farVisibilityTexels, nullptr);
     destroyBuffer(ctx, t.farVisibility);
     t = RenderTargets{};
 }

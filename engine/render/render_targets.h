@@ -20,8 +20,11 @@ struct RenderTargets {
     Image hdr;
     Image depth; // also sampled: the far field's splats are tested against it
     Image ldr;
-    // The far field's visibility buffer: per pixel one 64-bit word (far_splat.h), row-major.
+    // The far field's visibility buffer: per pixel one 64-bit word (far_splat.h), row-major. The
+    // passes that merge into it use atomics on the storage buffer; the resolve reads it through an
+    // R32G32_UINT texel view, one gather where llvmpipe loads a storage buffer lane by lane.
     Buffer farVisibility;
+    VkBufferView farVisibilityTexels = VK_NULL_HANDLE;
 };
 
 // Throws meadow::Error when the device cannot use the formats as meadow needs.

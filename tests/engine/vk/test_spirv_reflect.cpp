@@ -74,9 +74,10 @@ TEST(SpirvReflect, FarPassesLayout) {
     EXPECT_EQ(resolve.localSize[0], gpu::kFarResolveGroupSize);
     EXPECT_EQ(resolve.localSize[1], gpu::kFarResolveGroupSize);
     EXPECT_FALSE(resolve.localSizeXSpecialized);
-    // Frame, visibility buffer, HDR image, the meshes' depth, and the LDR image it tone maps into.
+    // Frame, visibility buffer (as a texel buffer), HDR image, the meshes' depth, and the LDR image
+    // it tone maps into.
     ASSERT_EQ(resolve.bindings.size(), 5u);
-    EXPECT_EQ(resolve.bindings.at(1), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    EXPECT_EQ(resolve.bindings.at(1), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
     EXPECT_EQ(resolve.bindings.at(2), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
     EXPECT_EQ(resolve.bindings.at(3), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     EXPECT_EQ(resolve.bindings.at(4), VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
