@@ -553,7 +553,8 @@ void recordCullPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
 }
 
 // Light: every clump vertex and variant onto the sky, when the sky changed. Its barrier hands the
-// compute passes' results (the cull's draws and draw records, the light) to everything drawn.
+// compute passes' results (the cull's draws and draw records, the light) to everything drawn,
+// including the compute passes that read the light as texels (sampled reads).
 void recordLightPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
     if (r.lightThisFrame) {
         // The previous frame's passes read the vertex light this pass writes again. (On lavapipe
@@ -569,7 +570,8 @@ void recordLightPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
         }
     }
     barrier(cmd, access::kComputeReadWrite,
-            access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead | access::kComputeRead);
+            access::kIndirectRead | access::kVertexShaderRead | access::kFragmentShaderRead | access::kComputeRead |
+                access::kComputeSampledRead);
 }
 
 // The ground light map, with the light: every texel made again from the light pass's ratios
