@@ -32,11 +32,12 @@ layout(set = 0, binding = 4, std430) readonly buffer Clumps { GpuClump clumps[];
 // and a texel buffer with one gather per texel (docs/BENCHMARKS.md).
 layout(set = 0, binding = 5) uniform usamplerBuffer farSamples; // GpuFarSample: 2 texels each
 layout(set = 0, binding = 6) uniform usamplerBuffer lodVertices; // GpuLodVertex: 3 texels each
-layout(set = 0, binding = 7) uniform samplerBuffer motionData; // RGBA32F: clump_motion.glsl
+layout(set = 0, binding = 7) uniform samplerBuffer motionData;
 layout(set = 0, binding = 8) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 9, std430) buffer Visibility { uint64_t visibility[]; };
 // For each instance's bounding sphere (the cull pass's): the coin's bound below.
 layout(set = 0, binding = 10, std430) readonly buffer Instances { GpuInstance instances[]; };
+layout(set = 0, binding = 11) uniform samplerBuffer motionRows; // motionData's basis rows, a texel each
 #include "clump_motion.glsl"
 // As instance.vert: the mirror plane's normal (xz).
 layout(push_constant) uniform FarParams { vec4 mirrorNormal; };

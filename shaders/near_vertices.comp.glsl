@@ -23,9 +23,10 @@ layout(set = 0, binding = 2, std430) readonly buffer NearDispatch { GpuNearDispa
 layout(set = 0, binding = 3, std430) readonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
 layout(set = 0, binding = 4, std430) readonly buffer NearMeshes { uvec4 nearMeshes[]; }; // near_raster.h
 layout(set = 0, binding = 5) uniform usamplerBuffer lodVertices; // GpuLodVertex: 3 texels each
-layout(set = 0, binding = 6) uniform samplerBuffer motionData; // RGBA32F: clump_motion.glsl
+layout(set = 0, binding = 6) uniform samplerBuffer motionData;
 layout(set = 0, binding = 7) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 8, std430) writeonly buffer NearVertices { uvec4 nearVertices[]; }; // 2 per vertex
+layout(set = 0, binding = 9) uniform samplerBuffer motionRows; // motionData's basis rows, a texel each
 #include "clump_motion.glsl"
 layout(push_constant) uniform NearParams { vec4 mirrorNormal; }; // as instance.vert's
 

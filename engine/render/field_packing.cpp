@@ -37,17 +37,12 @@ void appendUnshadowedTransfer(const Mesh& mesh, std::vector<float>& out) {
     }
 }
 
-// A clump's basis rows and coordinates into motionData: GpuClump::motion. The compute passes read
-// motionData as RGBA32F texels (clump_motion.glsl): llvmpipe pays a gather per fetch
-// (docs/BENCHMARKS.md, "The motion rows as one texel", "The coordinates four to a texel").
-// - Each basis row (a mode's x, y, z for one vertex) takes 4 floats, the last 0, on a 4-float
-//   boundary. `basisBase` is the clump's first row, in rows of 4 floats.
-// - Each block's coordinates in a frame start on a 4-float boundary too, padded with zeros to a
-//   multiple of 4, so that a vertex reads up to four of its modes' coordinates with one fetch.
-//   `blockCoords` is each block's first coordinate in a frame (in floats), for packLods; the
-//   frame's stride (GpuClump::motion.z) is the padded sum.
-void packMotion(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g, uint32_t& basisBase,
-                std::vector<uint32_t>& blockCoords) {
+// A clump's basis rows and coordinates into motionData: GpuClump::motion. Each basis row (a mode's
+// x, y, z for one vertex) takes 4 floats, the last 0, on a 4-float boundary, so that the compute
+// passes fetch it as one RGBA32F texel (motionRowTexels) rather than three floats: llvmpipe pays a
+// gather per fetch (docs/BENCHMARKS.md, "The motion rows as one texel"). `basisBase` is the clump's
+// first row, in rows of 4 floats.
+void packMotion(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g, uint32_t& basisBase) {
     const MotionBasis& motion = clump.motion;
     const bool moving = motion.frames > 0;
     p.motionData.resize((p.motionData.size() + 3) / 4 * 4, 0.0f);
@@ -57,22 +52,9 @@ void packMotion(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g, uint
             p.motionData.insert(p.motionData.end(),
                                 {motion.basis[row], motion.basis[row + 1], motion.basis[row + 2], 0.0f});
     const uint32_t coordBase = uint32_t(p.motionData.size());
-    blockCoords.clear();
-    uint32_t stride = 0;
-    for (const MotionBlock& block : motion.blocks) {
-        blockCoords.push_back(stride);
-        stride += (block.ranks[0] + 3) / 4 * 4;
-    }
-    if (moving) {
-        p.motionData.resize(size_t(coordBase) + size_t(stride) * motion.frames, 0.0f);
-        for (uint32_t f = 0; f < motion.frames; ++f)
-            for (size_t b = 0; b < motion.blocks.size(); ++b) {
-                const float* from = &motion.coords[size_t(f) * motion.modesPerFrame() + motion.blocks[b].coordOffset];
-                std::copy(from, from + motion.blocks[b].ranks[0],
-                          &p.motionData[coordBase + size_t(f) * stride + blockCoords[b]]);
-            }
-    }
-    g.motion = gpu::uvec4(0u, coordBase, moving ? stride : 0u, moving ? motion.frames : 1u);
+    if (moving)
+        p.motionData.insert(p.motionData.end(), motion.coords.begin(), motion.coords.end());
+    g.motion = gpu::uvec4(0u, coordBase, moving ? motion.modesPerFrame() : 0u, moving ? motion.frames : 1u);
 }
 
 // The walk's tables into motionGraph: GpuClump::graph and graphSizes. A static clump gets one
@@ -102,8 +84,7 @@ void packGraph(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
 
 // Each LOD's vertices (with their motion rows) and triangles, and its draw: buckets clump-major.
 // Returns the first GpuLodVertex of the last LOD.
-uint32_t packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount, uint32_t basisBase,
-                  const std::vector<uint32_t>& blockCoords, FieldPacking& p) {
+uint32_t packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount, uint32_t basisBase, FieldPacking& p) {
     const MotionBasis& motion = clump.motion;
     const bool moving = motion.frames > 0;
     uint32_t lastLodBase = 0;
@@ -119,7 +100,7 @@ uint32_t packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount,
                                  gpu::uvec4(0u, 0u, v, l << 16)};
             if (moving) {
                 const MotionBlock& block = motion.blocks[motion.vertexBlock[v]];
-                lv.motion = gpu::uvec4(basisBase + motion.vertexRowOffset[v] / 3, blockCoords[motion.vertexBlock[v]], v,
+                lv.motion = gpu::uvec4(basisBase + motion.vertexRowOffset[v] / 3, block.coordOffset, v,
                                        block.ranks[std::min(l, kLodCount - 1)] | (l << 16));
             }
             p.lodVertices.push_back(lv);
@@ -289,10 +270,9 @@ FieldPacking packField(std::span<const FieldClump> clumps, std::span<const gpu::
         const FieldClump& clump = clumps[ci];
         gpu::GpuClump g{};
         uint32_t basisBase = 0;
-        std::vector<uint32_t> blockCoords;
-        packMotion(clump, p, g, basisBase, blockCoords);
+        packMotion(clump, p, g, basisBase);
         packGraph(clump, p, g);
-        const uint32_t lastLodBase = packLods(clump, ci, lodCount, basisBase, blockCoords, p);
+        const uint32_t lastLodBase = packLods(clump, ci, lodCount, basisBase, p);
         packLight(clump, p, g);
         packFar(clump, ci, lastLodBase, p, g);
         p.clumps.push_back(g);

@@ -243,7 +243,9 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     if (r.farField || r.nearRasterOn) {
         r.lodVertexTexels =
             createTexelBufferView(ctx, r.lodVertices, VK_FORMAT_R32G32B32A32_UINT, 16, "the LOD vertices");
-        r.motionTexels = createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "the motion data");
+        r.motionTexels = createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32_SFLOAT, 4, "the motion data");
+        r.motionRowTexels =
+            createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "the motion basis rows");
     }
     if (r.nearRasterOn)
         r.indexTexels = createTexelBufferView(ctx, r.indices, VK_FORMAT_R32_UINT, 4, "the LOD meshes' indices");
@@ -348,8 +350,8 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
                         &r.groundMap, &r.farSplat, &r.farResolve, &r.nearVertices, &r.nearRaster})
         destroyPipeline(ctx, *p);
     for (VkBufferView* view :
-         {&r.transferTexels, &r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.vertexLightTexels,
-          &r.groundTexelStartTexels, &r.groundEntryTexels, &r.indexTexels, &r.nearShadedTexels})
+         {&r.transferTexels, &r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.motionRowTexels,
+          &r.vertexLightTexels, &r.groundTexelStartTexels, &r.groundEntryTexels, &r.indexTexels, &r.nearShadedTexels})
         if (*view) {
             vkDestroyBufferView(ctx.device, *view, nullptr);
             *view = VK_NULL_HANDLE;
@@ -676,7 +678,8 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
         // Every vertex of the listed draws moved and lit once, then their triangles drawn.
         bindPipeline(ctx, cmd, r.nearVertices,
                      {r.frameUniforms, r.nearList, r.nearDispatch, r.drawInstances, r.nearMeshes,
-                      Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), r.nearShaded});
+                      Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), r.nearShaded,
+                      Binding(r.motionRowTexels)});
         pushConstants(ctx, cmd, r.nearVertices, &r.mirrorNormal, sizeof(glm::vec4));
         vkCmdDispatchIndirect(cmd, r.nearDispatch.buffer, 0);
         markPass(timer, cmd, "nearVertices");
@@ -697,7 +700,7 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
     bindPipeline(ctx, cmd, r.farSplat,
                  {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, Binding(r.farSampleTexels),
                   Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), t.farVisibility,
-                  r.instances});
+                  r.instances, Binding(r.motionRowTexels)});
     pushConstants(ctx, cmd, r.farSplat, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdDispatchIndirect(cmd, r.farDispatch.buffer, 0);
 }

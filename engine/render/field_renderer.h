@@ -167,7 +167,8 @@ struct FieldRenderer {
     VkBufferView transferTexels = VK_NULL_HANDLE;
     VkBufferView farSampleTexels = VK_NULL_HANDLE;
     VkBufferView lodVertexTexels = VK_NULL_HANDLE;
-    VkBufferView motionTexels = VK_NULL_HANDLE; // RGBA32F: 4 floats a texel (field_packing.cpp, packMotion)
+    VkBufferView motionTexels = VK_NULL_HANDLE;
+    VkBufferView motionRowTexels = VK_NULL_HANDLE; // the same buffer's basis rows, RGBA32F
     VkBufferView vertexLightTexels = VK_NULL_HANDLE;
     Buffer farList;     // per far instance this frame: (visible-list entry, samples to draw)
     Buffer farDispatch; // gpu::GpuFarDispatch: the splat pass's indirect dispatch, written by cull

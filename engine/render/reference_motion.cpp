@@ -18,10 +18,6 @@ glm::vec3 clumpVertexDisplacement(const std::vector<float>& motionData, const gl
     const uint32_t rank = motion.w & 0xffffu;
     const uint32_t q0 = inst.offsets.x + motion.y, q1 = inst.offsets.y + motion.y;
     const bool blending = inst.pose.z > 0.0f;
-    for (uint32_t q : {q0, q1})
-        if (rank > 0 && (q == q0 || blending) && q % 4u != 0u)
-            throw Error(std::string(reference) + ": motion coordinates at index " + std::to_string(q) +
-                        " do not start on a texel's 4-float boundary");
     glm::vec3 d(0.0f);
     for (uint32_t k = 0; k < rank; ++k) {
         const uint32_t row = 4u * (motion.x + k);

@@ -14,9 +14,7 @@ namespace meadow {
 
 // d = sum over the vertex's modes k of U_k q_k, the coordinates blended across a motion-graph jump:
 // `motion` is its GpuLodVertex::motion, `motionData` the packed rows (4 floats each) and
-// coordinates (each block's in a frame from a 4-float boundary, the texel the shader fetches them
-// in). Throws meadow::Error, naming `reference`, for a row or coordinate outside motionData and for
-// coordinates that do not start on a 4-float boundary.
+// coordinates. Throws meadow::Error, naming `reference`, for a row or coordinate outside motionData.
 glm::vec3 clumpVertexDisplacement(const std::vector<float>& motionData, const glm::uvec4& motion,
                                   const gpu::GpuDrawInstance& inst, const char* reference);
 

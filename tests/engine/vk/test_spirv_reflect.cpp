@@ -28,14 +28,16 @@ TEST(SpirvReflect, NearRasterPassesLayout) {
     EXPECT_EQ(vertices.localSize[0], gpu::kNearGroupSize);
     EXPECT_TRUE(vertices.localSizeXSpecialized); // the width is the device's
     // Frame; near list, dispatch, draw records, near meshes; LOD vertices, motion, light as texel
-    // buffers; the shaded vertices. The mirror plane as a push constant.
-    ASSERT_EQ(vertices.bindings.size(), 9u);
+    // buffers; the shaded vertices; the motion's basis rows as a texel buffer. The mirror plane as a
+    // push constant.
+    ASSERT_EQ(vertices.bindings.size(), 10u);
     EXPECT_EQ(vertices.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     for (uint32_t b = 1; b <= 4; ++b)
         EXPECT_EQ(vertices.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
     for (uint32_t b = 5; b <= 7; ++b)
         EXPECT_EQ(vertices.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << b;
     EXPECT_EQ(vertices.bindings.at(8), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    EXPECT_EQ(vertices.bindings.at(9), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
     EXPECT_EQ(vertices.pushConstantBytes, 16u);
     ShaderReflection raster = reflectShader(findShader("near_raster.comp"), "near_raster.comp");
     EXPECT_EQ(raster.localSize[0], gpu::kNearGroupSize);
@@ -59,9 +61,10 @@ TEST(SpirvReflect, FarPassesLayout) {
     EXPECT_TRUE(splat.localSizeXSpecialized); // the threads per instance are the device's
     // Frame; far list, dispatch, draw records, clumps; samples, LOD vertices, motion, light as texel
     // buffers (samplerBuffer: a sampled image of Dim Buffer); the visibility buffer; the instances
-    // (their bounding spheres bound the coverage coin). The mirror plane as a push constant. (The meshes' depth is the
-    // resolve's: far_splat.h, farWordShows.)
-    ASSERT_EQ(splat.bindings.size(), 11u);
+    // (their bounding spheres bound the coverage coin); the motion's basis rows as a texel buffer.
+    // The mirror plane as a push constant. (The meshes' depth is the resolve's: far_splat.h,
+    // farWordShows.)
+    ASSERT_EQ(splat.bindings.size(), 12u);
     EXPECT_EQ(splat.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     for (uint32_t b = 1; b <= 4; ++b)
         EXPECT_EQ(splat.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
@@ -69,6 +72,7 @@ TEST(SpirvReflect, FarPassesLayout) {
         EXPECT_EQ(splat.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << b;
     EXPECT_EQ(splat.bindings.at(9), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     EXPECT_EQ(splat.bindings.at(10), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    EXPECT_EQ(splat.bindings.at(11), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
     EXPECT_EQ(splat.pushConstantBytes, 16u);
     ShaderReflection resolve = reflectShader(findShader("far_resolve.comp"), "far_resolve.comp");
     EXPECT_EQ(resolve.localSize[0], gpu::kFarResolveGroupSize);
