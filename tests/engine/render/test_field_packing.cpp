@@ -11,9 +11,9 @@ namespace meadow {
 namespace {
 
 TEST(FieldPacking, AtlasIsLinearHalfFloats) {
-    // Two texels: black and white, opaque; then sRGB 188 in each colour channel (about 0.5028
+    // Three texels: black and white, opaque; then sRGB 188 in each colour channel (about 0.5028
     // linear) with alpha 128 (128/255, not decoded).
-    const RgbaImage atlas{2, 1, {0, 0, 0, 255, 255, 255, 255, 255, 188, 188, 188, 128}};
+    const RgbaImage atlas{3, 1, {0, 0, 0, 255, 255, 255, 255, 255, 188, 188, 188, 128}};
     const std::vector<uint16_t> texels = packAtlas(atlas);
     ASSERT_EQ(texels.size(), atlas.rgba.size());
     const float decoded = std::pow((188.0f / 255.0f + 0.055f) / 1.055f, 2.4f);
