@@ -112,11 +112,6 @@ uint32_t packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount,
     return lastLodBase;
 }
 
-float srgbByteToLinear(uint32_t byte) {
-    const float c = float(byte) / 255.0f;
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
 // The far field's samples into farSamples, each pointing at the GpuLodVertex of the last LOD it
 // follows (its motion rows at that LOD's modes) and at the clump vertex whose light it takes:
 // GpuClump::far.
@@ -130,8 +125,8 @@ void packFar(const FieldClump& clump, size_t clumpIndex, uint32_t lastLodBase, F
         if (s.vertex >= slot.size() || slot[s.vertex] == UINT32_MAX)
             throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample follows vertex " +
                         std::to_string(s.vertex) + ", which its last LOD does not keep");
-        const float r = srgbByteToLinear(s.albedo & 0xffu), gr = srgbByteToLinear((s.albedo >> 8) & 0xffu),
-                    b = srgbByteToLinear((s.albedo >> 16) & 0xffu);
+        const float r = srgbToLinear(uint8_t(s.albedo & 0xffu)), gr = srgbToLinear(uint8_t((s.albedo >> 8) & 0xffu)),
+                    b = srgbToLinear(uint8_t((s.albedo >> 16) & 0xffu));
         if (s.lightVertex >= clump.mesh.vertices.size())
             throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample is lit by vertex " +
                         std::to_string(s.lightVertex) + " of " + std::to_string(clump.mesh.vertices.size()));
@@ -308,7 +303,7 @@ std::vector<float> packSkyDay(const sky::SkyDay& day) {
 std::vector<uint16_t> packAtlas(const RgbaImage& atlas) {
     uint16_t linear[256], alpha[256];
     for (uint32_t byte = 0; byte < 256; ++byte) {
-        linear[byte] = uint16_t(glm::packHalf1x16(srgbByteToLinear(byte)));
+        linear[byte] = uint16_t(glm::packHalf1x16(srgbToLinear(uint8_t(byte))));
         alpha[byte] = uint16_t(glm::packHalf1x16(float(byte) / 255.0f));
     }
     std::vector<uint16_t> texels(atlas.rgba.size());

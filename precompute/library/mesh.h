@@ -30,6 +30,11 @@ struct RgbaImage {
     std::vector<uint8_t> rgba;
 };
 
+// An 8-bit sRGB-encoded channel (the atlas's texels) to linear, 0..1.
+float srgbToLinear(uint8_t value);
+// Linear 0..1 (clamped) to an 8-bit sRGB-encoded channel, rounded to nearest.
+uint8_t linearToSrgb(float linear);
+
 // The plants' atlas is laid out in cells whose sides are whole multiples of 1 / kAtlasGrid of its
 // side, each part's texture painted to its cell's edge and used 1 / 128 of the side inside it
 // (plants/atlas.cpp). Its mipmaps, 2 x 2 boxes of a power-of-two image, keep the cells apart while

@@ -171,17 +171,6 @@ struct Painter {
 
 } // namespace
 
-float srgbToLinear(uint8_t value) {
-    const float c = static_cast<float>(value) / 255.0f;
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-uint8_t linearToSrgb(float linear) {
-    float c = std::clamp(linear, 0.0f, 1.0f);
-    float e = c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-    return static_cast<uint8_t>(std::lround(e * 255.0f));
-}
-
 AtlasCell importAtlasCell(uint32_t size) {
     const Cell& cell = cellOf(PartKind::Fall);
     auto at = [&](float eighths) { return static_cast<uint32_t>(eighths / 8.0f * static_cast<float>(size)); };

@@ -9,6 +9,7 @@
 // outlines come from the geometry, not from cutouts.
 #pragma once
 
+#include "library/mesh.h"
 #include "plant.h"
 
 #include <array>
@@ -29,11 +30,6 @@ struct AtlasRegion {
     glm::vec2 map(glm::vec2 local) const { return min + (max - min) * local; }
     bool contains(glm::vec2 uv) const { return uv.x >= min.x && uv.x <= max.x && uv.y >= min.y && uv.y <= max.y; }
 };
-
-// An 8-bit sRGB-encoded channel (the atlas's texels) to linear, 0..1.
-float srgbToLinear(uint8_t value);
-// Linear 0..1 (clamped) to an 8-bit sRGB-encoded channel, rounded to nearest.
-uint8_t linearToSrgb(float linear);
 
 // Where each part sits in the iris atlas; independent of the atlas size, so meshes can be built
 // before (or without) the atlas.
