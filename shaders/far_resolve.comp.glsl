@@ -2,7 +2,8 @@
 // Far field, resolve pass, which is also the tone mapper when the far field is on: every pixel where
 // a far-field sample won (far_splat.comp) and lies nearer than the meshes' surface anywhere in the
 // pixel (far_splat.h, farWordShows) takes that sample's radiance, written into the HDR
-// image (so EXR output has it too); then the pixel is tone mapped into the LDR image as
+// image (so EXR output has it too; not where only the LDR image is read, kStoreHdr); then the pixel
+// is tone mapped into the LDR image as
 // tonemap.comp does (tonemap.h). The depth test is here, once per pixel, rather than per sample in
 // the splat pass: the same picture (far_splat.h, farWordShows), and no depth fetch in the splat
 // pass's loop. One pass instead of a resolve and a tone map: each pixel's HDR value is read and
@@ -14,6 +15,9 @@
 #include "tonemap.h"
 
 layout(local_size_x = kFarResolveGroupSize, local_size_y = kFarResolveGroupSize) in;
+// Whether the far field's pixels are stored into the HDR image too (render_targets.h, HdrContents):
+// false where only the LDR image is read after the frame.
+layout(constant_id = 1) const bool kStoreHdr = true;
 
 MEADOW_FRAME_BLOCK(0, 0)
 // The visibility buffer's words as (low, high) texels: a texel fetch where llvmpipe would load a
@@ -45,7 +49,8 @@ void main() {
         // RGB9E5 converts to half floats exactly (9-bit mantissas, exponents from -24 to 15), so
         // the LDR pixel is the HDR image's tone mapped, as without the far field.
         radiance = unpackRgb9e5(word.x);
-        imageStore(hdrImage, p, vec4(radiance, 1.0));
+        if (kStoreHdr)
+            imageStore(hdrImage, p, vec4(radiance, 1.0));
     } else {
         radiance = imageLoad(hdrImage, p).rgb; // a mesh (or the terrain, or the sky) is as near or nearer
     }

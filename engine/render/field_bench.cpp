@@ -31,7 +31,7 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     FieldRenderer renderer = createFieldRenderer(ctx, clumps, field, atlas, scenery);
     if (cpuDriven)
         enableCpuDriver(ctx, renderer, clumps, field);
-    Offscreen offscreen = createOffscreen(ctx, {options.width, options.height});
+    Offscreen offscreen = createOffscreen(ctx, {options.width, options.height}, HdrContents::MeshPass); // as the window
     FrameState state;
     state.camera = options.camera;
     state.width = options.width;

@@ -148,6 +148,7 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     const uint32_t farLanes = scenery.farLanes > 0 ? scenery.farLanes : farSplatLanesFor(ctx.properties);
     r.farSplat = createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4), gpu::kFarInstancesPerGroup * farLanes);
     r.farResolve = createComputePipeline(ctx, "far_resolve.comp");
+    r.farResolveLdrOnly = createComputePipeline(ctx, "far_resolve.comp", 0, 0, {0u}); // kStoreHdr false
     const uint32_t nearWidth = scenery.nearWidth > 0                                      ? scenery.nearWidth
                                : ctx.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? gpu::kNearCpuGroupSize
                                                                                           : gpu::kNearGroupSize;
@@ -347,7 +348,7 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
 
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.skyBlend, &r.ground, &r.instance,
-                        &r.groundMap, &r.farSplat, &r.farResolve, &r.nearVertices, &r.nearRaster})
+                        &r.groundMap, &r.farSplat, &r.farResolve, &r.farResolveLdrOnly, &r.nearVertices, &r.nearRaster})
         destroyPipeline(ctx, *p);
     for (VkBufferView* view :
          {&r.transferTexels, &r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.motionRowTexels,
@@ -715,11 +716,12 @@ void recordTonemapPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, cons
         // The HDR image is in GENERAL since the far pass; wait for the splat pass's atomics, whose
         // words the resolve reads as texels.
         barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite | access::kComputeSampledRead);
-        bindPipeline(ctx, cmd, r.farResolve,
+        Pipeline& resolve = t.hdrContents == HdrContents::Frame ? r.farResolve : r.farResolveLdrOnly;
+        bindPipeline(ctx, cmd, resolve,
                      {r.frameUniforms, Binding(t.farVisibilityTexels), Binding(t.hdr.view, VK_IMAGE_LAYOUT_GENERAL),
                       Binding(t.depth.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.pointSampler),
                       Binding(t.ldr.view, VK_IMAGE_LAYOUT_GENERAL)});
-        dispatchCovering(cmd, r.farResolve, t.extent.width, t.extent.height);
+        dispatchCovering(cmd, resolve, t.extent.width, t.extent.height);
     } else {
         imageBarrier(cmd, t.hdr.image, VK_IMAGE_ASPECT_COLOR_BIT, access::kColorAttachmentWrite,
                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, access::kComputeRead, VK_IMAGE_LAYOUT_GENERAL);

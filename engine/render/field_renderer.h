@@ -140,7 +140,8 @@ struct FieldRenderer {
     Pipeline instance;
     Pipeline groundMap;
     Pipeline farSplat;
-    Pipeline farResolve;
+    Pipeline farResolve;        // the HDR image left holding the frame (HdrContents::Frame)
+    Pipeline farResolveLdrOnly; // the far field and the near raster into the LDR image alone (MeshPass)
     Pipeline nearVertices;
     Pipeline nearRaster;
 

@@ -7,9 +7,9 @@
 
 namespace meadow {
 
-Offscreen createOffscreen(Context& ctx, VkExtent2D extent) {
+Offscreen createOffscreen(Context& ctx, VkExtent2D extent, HdrContents hdr) {
     Offscreen o;
-    o.targets = createRenderTargets(ctx, extent);
+    o.targets = createRenderTargets(ctx, extent, hdr);
     o.timer = createGpuTimer(ctx, 16);
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = ctx.commandPool;

@@ -15,7 +15,7 @@ struct Offscreen {
     VkFence fence = VK_NULL_HANDLE;
 };
 
-Offscreen createOffscreen(Context& context, VkExtent2D extent);
+Offscreen createOffscreen(Context& context, VkExtent2D extent, HdrContents hdr = HdrContents::Frame);
 void destroyOffscreen(Context& context, Offscreen& offscreen);
 
 struct FrameTimings {

@@ -39,7 +39,7 @@ std::vector<uint8_t> readImageBytes(Context& ctx, const Image& image, VkImageAsp
     return bytes;
 }
 
-RenderTargets createRenderTargets(Context& ctx, VkExtent2D extent) {
+RenderTargets createRenderTargets(Context& ctx, VkExtent2D extent, HdrContents hdr) {
     requireFormat(ctx, kHdrFormat,
                   VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT |
                       VK_FORMAT_FEATURE_TRANSFER_SRC_BIT,
@@ -54,6 +54,7 @@ RenderTargets createRenderTargets(Context& ctx, VkExtent2D extent) {
                   "display (R8G8B8A8_UNORM)");
     RenderTargets t;
     t.extent = extent;
+    t.hdrContents = hdr;
     t.hdr = createImage2D(ctx, extent, kHdrFormat,
                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
                               VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -100,6 +101,9 @@ std::vector<uint64_t> readFarVisibility(Context& ctx, const RenderTargets& t) {
 }
 
 std::vector<uint16_t> readHdrPixels(Context& ctx, const RenderTargets& t) {
+    if (t.hdrContents != HdrContents::Frame)
+        throw Error("the HDR image of these render targets holds only the mesh pass, not the frame (they were made "
+                    "for the LDR image alone)");
     const std::vector<uint8_t> bytes =
         readImageBytes(ctx, t.hdr, VK_IMAGE_ASPECT_COLOR_BIT, 8, VK_IMAGE_LAYOUT_GENERAL, access::kComputeReadWrite);
     std::vector<uint16_t> halves(bytes.size() / 2);

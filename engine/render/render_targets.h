@@ -15,8 +15,16 @@ inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr VkFormat kLdrFormat = VK_FORMAT_R8G8B8A8_UNORM; // values already sRGB-encoded
 
+// What the HDR image holds once a frame is done. `Frame`: the whole frame, as the LDR image shows
+// it before tone mapping (EXR output and the tests read it). `MeshPass`: only what the mesh pass
+// drew; the far field's and the near raster's pixels go to the LDR image alone. Nothing the bench
+// or the window does reads the HDR image after the frame, and without that store the resolve pass
+// takes about 3 ms less on lavapipe (docs/BENCHMARKS.md). The LDR image is the same either way.
+enum class HdrContents { Frame, MeshPass };
+
 struct RenderTargets {
     VkExtent2D extent{};
+    HdrContents hdrContents = HdrContents::Frame;
     Image hdr;
     Image depth; // also sampled: the far field's splats are tested against it
     Image ldr;
@@ -28,11 +36,12 @@ struct RenderTargets {
 };
 
 // Throws meadow::Error when the device cannot use the formats as meadow needs.
-RenderTargets createRenderTargets(Context& context, VkExtent2D extent);
+RenderTargets createRenderTargets(Context& context, VkExtent2D extent, HdrContents hdr = HdrContents::Frame);
 void destroyRenderTargets(Context& context, RenderTargets& targets);
 
 // Pixels of the frame just rendered, after its commands completed: 8-bit RGBA (tonemapped) or
-// half-float RGBA (linear HDR). Records and waits on its own command buffer.
+// half-float RGBA (linear HDR; throws meadow::Error for targets whose HDR image holds only the mesh
+// pass). Records and waits on its own command buffer.
 std::vector<uint8_t> readLdrPixels(Context& context, const RenderTargets& targets);
 std::vector<uint16_t> readHdrPixels(Context& context, const RenderTargets& targets);
 // After a frame with the far field (tests: the splat pass's CPU reference): the depth the mesh

@@ -96,7 +96,7 @@ void createLayouts(Context& ctx, Pipeline& p, const std::vector<const LoadedShad
 } // namespace
 
 Pipeline createComputePipeline(Context& ctx, std::string_view shaderName, uint32_t pushConstantSize,
-                               uint32_t localSizeX) {
+                               uint32_t localSizeX, std::initializer_list<uint32_t> constants) {
     Pipeline p;
     p.name = std::string(shaderName);
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
@@ -122,9 +122,21 @@ Pipeline createComputePipeline(Context& ctx, std::string_view shaderName, uint32
     info.stage.module = shader.module;
     info.stage.pName = "main";
     info.layout = p.layout;
-    const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
-    const VkSpecializationInfo specialization{1, &entry, sizeof(uint32_t), &localSizeX};
+    // Constant 0 is the width (when given), then constants 1, 2, ...: one 32-bit value each.
+    std::vector<uint32_t> values;
+    std::vector<VkSpecializationMapEntry> entries;
+    auto add = [&](uint32_t id, uint32_t value) {
+        entries.push_back({id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+        values.push_back(value);
+    };
     if (localSizeX > 0)
+        add(0, localSizeX);
+    uint32_t id = 1;
+    for (uint32_t value : constants)
+        add(id++, value);
+    const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(),
+                                              values.size() * sizeof(uint32_t), values.data()};
+    if (!entries.empty())
         info.stage.pSpecializationInfo = &specialization;
     VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline));
     return p;

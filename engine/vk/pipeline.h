@@ -31,8 +31,10 @@ struct Pipeline {
 // (0 when it declares none); anything else throws, naming both. `localSizeX` > 0 sets the
 // workgroup's width through specialization constant 0, for a shader that declares it
 // (`layout(local_size_x = DEFAULT, local_size_x_id = 0) in;`); a shader that does not, throws.
+// `constants` set specialization constants 1, 2, ... in order, each 32 bits (a bool is 0 or 1); the
+// shader keeps its defaults for those not given.
 Pipeline createComputePipeline(Context& context, std::string_view shader, uint32_t pushConstantSize = 0,
-                               uint32_t localSizeX = 0);
+                               uint32_t localSizeX = 0, std::initializer_list<uint32_t> constants = {});
 
 struct GraphicsPipelineDesc {
     std::string_view vertexShader;

@@ -141,16 +141,18 @@ ComparisonField comparisonField(float farRadius) {
 // What one driving path drew of the field after `frames` frames, 0.1 s apart, the camera sliding.
 struct PathRun {
     std::vector<uint8_t> picture;
+    std::vector<uint8_t> hdr; // the HDR image's bytes, whatever the targets say it holds
     FieldStats stats;
     std::vector<gpu::GpuMotionState> states;
     uint64_t lastFrameUpload = 0; // host bytes written for the last frame
 };
 
-PathRun drawOnPath(Context& context, const ComparisonField& field, bool cpuDriven, int frames) {
+PathRun drawOnPath(Context& context, const ComparisonField& field, bool cpuDriven, int frames,
+                   HdrContents hdr = HdrContents::Frame) {
     FieldRenderer renderer = createFieldRenderer(context, field.clumps, field.instances, testAtlas(), field.scenery);
     if (cpuDriven)
         enableCpuDriver(context, renderer, field.clumps, field.instances);
-    Offscreen offscreen = createOffscreen(context, {160, 90});
+    Offscreen offscreen = createOffscreen(context, {160, 90}, hdr);
     FrameState state = frameState(field.camera, 160, 90);
     state.wind.baseLevel = 2.0f;
     PathRun run;
@@ -162,6 +164,8 @@ PathRun drawOnPath(Context& context, const ComparisonField& field, bool cpuDrive
         run.lastFrameUpload = context.hostBytesWritten - before;
     }
     run.picture = readLdrPixels(context, offscreen.targets);
+    run.hdr = readImageBytes(context, offscreen.targets.hdr, VK_IMAGE_ASPECT_COLOR_BIT, 8, VK_IMAGE_LAYOUT_GENERAL,
+                             access::kComputeReadWrite);
     run.stats = readFieldStats(renderer);
     run.states.resize(field.instances.size());
     if (cpuDriven)
@@ -233,6 +237,26 @@ TEST_F(Gpu, TheSplatPassDrawsTheSamePictureWithAnyThreadsPerInstance) {
         field.scenery.farLanes = lanes;
         EXPECT_THROW(drawOnPath(*context, field, false, 1), Error) << lanes << " lanes";
     }
+}
+
+// Targets made for the LDR image alone (the bench's and the window's, HdrContents::MeshPass) resolve
+// the far field without storing it into the HDR image: the same picture, byte for byte, and an HDR
+// image without the far field's pixels, which readHdrPixels refuses to hand out.
+TEST_F(Gpu, TargetsForTheLdrImageAloneDrawTheSamePicture) {
+    const ComparisonField field = comparisonField(6.0f);
+    const PathRun frame = drawOnPath(*context, field, false, 3, HdrContents::Frame);
+    const PathRun ldrOnly = drawOnPath(*context, field, false, 3, HdrContents::MeshPass);
+    EXPECT_GT(frame.stats.farInstances, 200u);
+    EXPECT_TRUE(ldrOnly.picture == frame.picture);
+    ASSERT_EQ(ldrOnly.hdr.size(), frame.hdr.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < frame.hdr.size(); i += 8)
+        differing += std::memcmp(&frame.hdr[i], &ldrOnly.hdr[i], 8) != 0;
+    EXPECT_GT(differing, 1000u) << "pixels of the far field only the whole frame's HDR image holds";
+
+    Offscreen offscreen = createOffscreen(*context, {8, 8}, HdrContents::MeshPass);
+    EXPECT_THROW(readHdrPixels(*context, offscreen.targets), Error);
+    destroyOffscreen(*context, offscreen);
 }
 
 // A far radius above LOD 4's switch (4 px, band 0.1: the far field's band, 4.5 to 5.5 px, does not
