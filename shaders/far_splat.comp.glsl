@@ -21,6 +21,8 @@
 
 // The width is the device's (gpu_types.h): specialization constant 0.
 layout(local_size_x = kFarGroupSize, local_size_x_id = 0) in;
+// Whether the frame shows the LOD view (a debug view): as in near_raster.comp.
+layout(constant_id = 1) const bool kLodView = false;
 
 MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer FarList { uvec2 farList[]; };
@@ -171,7 +173,7 @@ void main() {
             vec3 irradiance = vec3(r.x + dot(r.yzw, d), g.x + dot(g.yzw, d), b.x + dot(b.yzw, d));
             vec3 albedo = unpackRgb9e5(farSample.data.y);
             vec3 radiance = albedo * max(irradiance, 0.0) / kPi;
-            if (frame.motion.z == kDebugViewLod)
+            if (kLodView)
                 radiance = kLodViewColors[kLodFar] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
             uint64_t word = packUint2x32(uvec2(packRgb9e5(radiance.r, radiance.g, radiance.b), farDepthKey(ndc.z)));
 

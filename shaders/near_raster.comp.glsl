@@ -20,6 +20,10 @@
 
 // The width is the device's (near_raster.h): specialization constant 0.
 layout(local_size_x = kNearGroupSize, local_size_x_id = 0) in;
+// Whether the frame shows the LOD view (a debug view; frame.motion.z): a pipeline of its own, for
+// llvmpipe runs an `if`'s body whatever the lanes decide, and the view's colours, tested and
+// looked up per pixel, cost about 4 ms of the default view with the view off (docs/BENCHMARKS.md).
+layout(constant_id = 1) const bool kLodView = false;
 
 MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer NearList { uvec4 nearList[]; }; // near_raster.h
@@ -128,7 +132,7 @@ void main() {
                 vec3 light = front ? pw.x * v0.front + pw.y * v1.front + pw.z * v2.front
                                    : pw.x * v0.back + pw.y * v1.back + pw.z * v2.back;
                 vec3 radiance = texel.rgb * light;
-                if (frame.motion.z == kDebugViewLod)
+                if (kLodView)
                     radiance = kLodViewColors[min(lod, kLodFar)] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
                 uint64_t word = packUint2x32(uvec2(packRgb9e5(radiance.r, radiance.g, radiance.b), farDepthKey(dot(w, depth))));
                 atomicMin(visibility[py * uint(size.x) + px], word);

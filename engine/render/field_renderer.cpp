@@ -147,6 +147,8 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     r.groundMap = createComputePipeline(ctx, "ground_map.comp");
     const uint32_t farLanes = scenery.farLanes > 0 ? scenery.farLanes : farSplatLanesFor(ctx.properties);
     r.farSplat = createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4), gpu::kFarInstancesPerGroup * farLanes);
+    r.farSplatLodView = createComputePipeline(ctx, "far_splat.comp", sizeof(glm::vec4),
+                                              gpu::kFarInstancesPerGroup * farLanes, {1u}); // kLodView
     r.farResolve = createComputePipeline(ctx, "far_resolve.comp");
     r.farResolveLdrOnly = createComputePipeline(ctx, "far_resolve.comp", 0, 0, {0u}); // kStoreHdr false
     const uint32_t nearWidth = scenery.nearWidth > 0                                      ? scenery.nearWidth
@@ -154,6 +156,7 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
                                                                                           : gpu::kNearGroupSize;
     r.nearVertices = createComputePipeline(ctx, "near_vertices.comp", sizeof(glm::vec4), nearWidth);
     r.nearRaster = createComputePipeline(ctx, "near_raster.comp", 0, nearWidth);
+    r.nearRasterLodView = createComputePipeline(ctx, "near_raster.comp", 0, nearWidth, {1u}); // kLodView
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);
     r.windAzimuth = std::atan2(wind.x, wind.y); // light/sh.h: from +z towards +x
@@ -348,7 +351,8 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
 
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
     for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.skyBlend, &r.ground, &r.instance,
-                        &r.groundMap, &r.farSplat, &r.farResolve, &r.farResolveLdrOnly, &r.nearVertices, &r.nearRaster})
+                        &r.groundMap, &r.farSplat, &r.farSplatLodView, &r.farResolve, &r.farResolveLdrOnly,
+                        &r.nearVertices, &r.nearRaster, &r.nearRasterLodView})
         destroyPipeline(ctx, *p);
     for (VkBufferView* view :
          {&r.transferTexels, &r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.motionRowTexels,
@@ -467,6 +471,7 @@ void updateFrame(Context& ctx, FieldRenderer& r, const FrameState& state) {
         r.blendedWeight = f.skyBlend.x;
     }
     r.cullThisFrame = !(state.freezeCulling && r.culledOnce);
+    r.lodViewThisFrame = state.debugView == gpu::kDebugViewLod;
     if (r.cpuDriver && r.cullThisFrame)
         cpuDriverUpdate(ctx, *r.cpuDriver, f);
     r.culledOnce = true;
@@ -685,7 +690,7 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
         vkCmdDispatchIndirect(cmd, r.nearDispatch.buffer, 0);
         markPass(timer, cmd, "nearVertices");
         barrier(cmd, access::kComputeWrite, access::kComputeSampledRead);
-        bindPipeline(ctx, cmd, r.nearRaster,
+        bindPipeline(ctx, cmd, r.lodViewThisFrame ? r.nearRasterLodView : r.nearRaster,
                      {r.frameUniforms, r.nearList, r.nearDispatch, r.drawInstances, r.clumps, r.nearMeshes,
                       Binding(r.indexTexels), Binding(r.nearShadedTexels),
                       Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.atlasSampler),
@@ -698,11 +703,12 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
         // only orders the two dispatches' writes for the validation layer's hazard tracking.
         barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite);
     }
-    bindPipeline(ctx, cmd, r.farSplat,
+    Pipeline& splat = r.lodViewThisFrame ? r.farSplatLodView : r.farSplat;
+    bindPipeline(ctx, cmd, splat,
                  {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, Binding(r.farSampleTexels),
                   Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), t.farVisibility,
                   r.instances, Binding(r.motionRowTexels)});
-    pushConstants(ctx, cmd, r.farSplat, &r.mirrorNormal, sizeof(glm::vec4));
+    pushConstants(ctx, cmd, splat, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdDispatchIndirect(cmd, r.farDispatch.buffer, 0);
 }
 

@@ -140,10 +140,12 @@ struct FieldRenderer {
     Pipeline instance;
     Pipeline groundMap;
     Pipeline farSplat;
+    Pipeline farSplatLodView;   // the LOD view painted (kLodView): the frames that show it
     Pipeline farResolve;        // the HDR image left holding the frame (HdrContents::Frame)
     Pipeline farResolveLdrOnly; // the far field and the near raster into the LDR image alone (MeshPass)
     Pipeline nearVertices;
     Pipeline nearRaster;
+    Pipeline nearRasterLodView; // as farSplatLodView
 
     Buffer frameUniforms; // host-written each frame: the only per-frame upload
     Buffer instances;
@@ -238,6 +240,7 @@ struct FieldRenderer {
     float blendedWeight = -1.0f;
     bool skyBlendThisFrame = false;
     bool cullThisFrame = true;
+    bool lodViewThisFrame = false; // FrameState::debugView is the LOD view: the splat and raster variants that paint it
     bool culledOnce = false;
     gpu::GpuFrame lastFrame{};
     // Set by enableCpuDriver (render/cpu_driver.h): the CPU steps, culls and uploads instead.
