@@ -1,13 +1,12 @@
 #version 460
 // Far field, resolve pass, which is also the tone mapper when the far field is on: every pixel where
 // a far-field sample won (far_splat.comp) and lies nearer than the meshes' surface anywhere in the
-// pixel (far_splat.h, farWordShows) takes that sample's radiance, written into the HDR
-// image (so EXR output has it too; not where only the LDR image is read, kStoreHdr); then the pixel
-// is tone mapped into the LDR image as
-// tonemap.comp does (tonemap.h). The depth test is here, once per pixel, rather than per sample in
-// the splat pass: the same picture (far_splat.h, farWordShows), and no depth fetch in the splat
-// pass's loop. One pass instead of a resolve and a tone map: each pixel's HDR value is read and
-// written once (docs/BENCHMARKS.md).
+// pixel (far_splat.h, farWordShows) takes that sample's radiance, written into the HDR image (so
+// EXR output has it too; not where only the LDR image is read, kStoreHdr); then the pixel is tone
+// mapped into the LDR image as tonemap.comp does (tonemap.h). The depth test is here, once per
+// pixel, rather than per sample in the splat pass: the same picture (far_splat.h, farWordShows),
+// and no depth fetch in the splat pass's loop. One pass instead of a resolve and a tone map: each
+// pixel's HDR value is read and written once (docs/BENCHMARKS.md).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "common.glsl"

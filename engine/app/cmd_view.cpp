@@ -410,8 +410,8 @@ bool prepareSwapchain(Walkthrough& w, VkExtent2D fb) {
         // Render at the window's size so the copy into the composite is 1:1.
         VK_CHECK(vkDeviceWaitIdle(w.ctx.device));
         destroyRenderTargets(w.ctx, w.targets);
-        w.targets =
-            createRenderTargets(w.ctx, w.window.extent, HdrContents::MeshPass); // the window shows the LDR image
+        // The window shows the LDR image: the HDR image need not hold the far field.
+        w.targets = createRenderTargets(w.ctx, w.window.extent, HdrContents::MeshPass);
         w.generation = w.window.swapchainGeneration;
         std::fprintf(stderr, "meadow: window %ux%u, present mode %s\n", w.window.extent.width, w.window.extent.height,
                      presentModeName(w.window.presentMode));

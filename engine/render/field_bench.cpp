@@ -31,7 +31,8 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     FieldRenderer renderer = createFieldRenderer(ctx, clumps, field, atlas, scenery);
     if (cpuDriven)
         enableCpuDriver(ctx, renderer, clumps, field);
-    Offscreen offscreen = createOffscreen(ctx, {options.width, options.height}, HdrContents::MeshPass); // as the window
+    // Only the LDR image is read, as in the window: the resolve stores nothing into the HDR image.
+    Offscreen offscreen = createOffscreen(ctx, {options.width, options.height}, HdrContents::MeshPass);
     FrameState state;
     state.camera = options.camera;
     state.width = options.width;

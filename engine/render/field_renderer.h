@@ -240,7 +240,8 @@ struct FieldRenderer {
     float blendedWeight = -1.0f;
     bool skyBlendThisFrame = false;
     bool cullThisFrame = true;
-    bool lodViewThisFrame = false; // FrameState::debugView is the LOD view: the splat and raster variants that paint it
+    // FrameState::debugView is the LOD view: the splat and raster variants that paint it.
+    bool lodViewThisFrame = false;
     bool culledOnce = false;
     gpu::GpuFrame lastFrame{};
     // Set by enableCpuDriver (render/cpu_driver.h): the CPU steps, culls and uploads instead.
