@@ -471,7 +471,6 @@ void updateFrame(Context& ctx, FieldRenderer& r, const FrameState& state) {
         r.blendedWeight = f.skyBlend.x;
     }
     r.cullThisFrame = !(state.freezeCulling && r.culledOnce);
-    r.lodViewThisFrame = state.debugView == gpu::kDebugViewLod;
     if (r.cpuDriver && r.cullThisFrame)
         cpuDriverUpdate(ctx, *r.cpuDriver, f);
     r.culledOnce = true;
@@ -667,6 +666,12 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
     vkCmdEndRendering(cmd);
 }
 
+// Whether the frame being recorded shows the LOD view (FrameState::debugView): its near raster and
+// splat pass then bind the pipelines that paint it (kLodView).
+bool lodViewShown(const FieldRenderer& r) {
+    return r.lastFrame.motion.z == gpu::kDebugViewLod;
+}
+
 // The far field (far_splat.h): the visibility buffer emptied and every far instance's samples
 // splatted into it. The winners are resolved against the meshes' depth by the tone map pass
 // (far_resolve.comp), which reads the depth in SHADER_READ_ONLY layout and the HDR image in GENERAL.
@@ -690,7 +695,7 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
         vkCmdDispatchIndirect(cmd, r.nearDispatch.buffer, 0);
         markPass(timer, cmd, "nearVertices");
         barrier(cmd, access::kComputeWrite, access::kComputeSampledRead);
-        bindPipeline(ctx, cmd, r.lodViewThisFrame ? r.nearRasterLodView : r.nearRaster,
+        bindPipeline(ctx, cmd, lodViewShown(r) ? r.nearRasterLodView : r.nearRaster,
                      {r.frameUniforms, r.nearList, r.nearDispatch, r.drawInstances, r.clumps, r.nearMeshes,
                       Binding(r.indexTexels), Binding(r.nearShadedTexels),
                       Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.atlasSampler),
@@ -703,7 +708,7 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
         // only orders the two dispatches' writes for the validation layer's hazard tracking.
         barrier(cmd, access::kComputeReadWrite, access::kComputeReadWrite);
     }
-    Pipeline& splat = r.lodViewThisFrame ? r.farSplatLodView : r.farSplat;
+    Pipeline& splat = lodViewShown(r) ? r.farSplatLodView : r.farSplat;
     bindPipeline(ctx, cmd, splat,
                  {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, Binding(r.farSampleTexels),
                   Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), t.farVisibility,

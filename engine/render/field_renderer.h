@@ -240,10 +240,8 @@ struct FieldRenderer {
     float blendedWeight = -1.0f;
     bool skyBlendThisFrame = false;
     bool cullThisFrame = true;
-    // FrameState::debugView is the LOD view: the splat and raster variants that paint it.
-    bool lodViewThisFrame = false;
     bool culledOnce = false;
-    gpu::GpuFrame lastFrame{};
+    gpu::GpuFrame lastFrame{}; // the uniforms updateFrame wrote last: the frame being recorded
     // Set by enableCpuDriver (render/cpu_driver.h): the CPU steps, culls and uploads instead.
     std::shared_ptr<CpuDriver> cpuDriver;
 };
