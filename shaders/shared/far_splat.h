@@ -48,9 +48,6 @@ inline float farUintBitsToFloat(uint u) {
     std::memcpy(&f, &u, sizeof f);
     return f;
 }
-inline float farLdexp(float x, int e) {
-    return std::ldexp(x, e);
-}
 inline float farMax(float a, float b) {
     return a > b ? a : b;
 }
@@ -89,7 +86,6 @@ inline int farIndex(uint i) {
 #define FarVec3 vec3
 #define farFloatBits(f) floatBitsToUint(f)
 #define farUintBitsToFloat(u) uintBitsToFloat(u)
-#define farLdexp(x, e) ldexp(x, e)
 #define farMax(a, b) max(a, b)
 #define farMin(a, b) min(a, b)
 #define farFloor(x) floor(x)
@@ -154,7 +150,18 @@ MEADOW_FAR_FN float farMeshDepthLimit(float centre, float left, float right, flo
     return limit;
 }
 
+// 2^e for e in [-126, 127], from its bits: the same value as ldexp(1, e), and x * farPow2(e) the
+// same as ldexp(x, e) where the result is a normal float. llvmpipe lowers ldexp to a dozen integer
+// operations per call (Mesa's lower_ldexp), and RGB9E5 is packed per far sample and near-raster
+// pixel and unpacked six times per near-raster triangle: one power of two per word instead of one
+// ldexp per channel (docs/BENCHMARKS.md).
+MEADOW_FAR_FN float farPow2(int e) {
+    return farUintBitsToFloat(uint(e + 127) << 23u);
+}
+
 // Non-negative finite radiance to RGB9E5; values above kRgb9e5Max saturate, negative ones are 0.
+// The scaled channels are normal floats or round to 0 (shift lies in [-24, 8]), so each product by
+// the power of two is exact.
 MEADOW_FAR_FN uint packRgb9e5(float r, float g, float b) {
     float rc = farMin(farMax(r, 0.0f), kRgb9e5Max);
     float gc = farMin(farMax(g, 0.0f), kRgb9e5Max);
@@ -165,23 +172,24 @@ MEADOW_FAR_FN uint packRgb9e5(float r, float g, float b) {
     int e = int((farFloatBits(maxc) >> 23u) & 0xffu) - 127;
     int exponent = (e < -16 ? -16 : e) + 1 + int(kRgb9e5Bias);
     int shift = exponent - int(kRgb9e5Bias) - int(kRgb9e5MantissaBits);
-    float maxs = farFloor(farLdexp(maxc, -shift) + 0.5f);
+    float scale = farPow2(-shift);
+    float maxs = farFloor(maxc * scale + 0.5f);
     if (maxs >= 512.0f) {
         exponent += 1;
-        shift += 1;
+        scale *= 0.5f;
     }
-    uint rs = uint(farFloor(farLdexp(rc, -shift) + 0.5f));
-    uint gs = uint(farFloor(farLdexp(gc, -shift) + 0.5f));
-    uint bs = uint(farFloor(farLdexp(bc, -shift) + 0.5f));
+    uint rs = uint(farFloor(rc * scale + 0.5f));
+    uint gs = uint(farFloor(gc * scale + 0.5f));
+    uint bs = uint(farFloor(bc * scale + 0.5f));
     return rs | (gs << 9u) | (bs << 18u) | (uint(exponent) << 27u);
 }
 
 MEADOW_FAR_FN FarVec3 unpackRgb9e5(uint v) {
-    int shift = int(v >> 27u) - int(kRgb9e5Bias) - int(kRgb9e5MantissaBits);
+    float scale = farPow2(int(v >> 27u) - int(kRgb9e5Bias) - int(kRgb9e5MantissaBits));
     FarVec3 c;
-    c.x = farLdexp(float(v & 0x1ffu), shift);
-    c.y = farLdexp(float((v >> 9u) & 0x1ffu), shift);
-    c.z = farLdexp(float((v >> 18u) & 0x1ffu), shift);
+    c.x = float(v & 0x1ffu) * scale;
+    c.y = float((v >> 9u) & 0x1ffu) * scale;
+    c.z = float((v >> 18u) & 0x1ffu) * scale;
     return c;
 }
 
@@ -369,7 +377,6 @@ MEADOW_FAR_FN float farCoverageGain(GpuClump clump, float size, float elevation)
 #undef FarVec3
 #undef farFloatBits
 #undef farUintBitsToFloat
-#undef farLdexp
 #undef farMax
 #undef farMin
 #undef farFloor
