@@ -161,6 +161,17 @@ void packLight(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
         appendUnshadowedTransfer(clump.mesh, p.transfer);
     else
         p.transfer.insert(p.transfer.end(), clump.transfer.begin(), clump.transfer.end());
+    // A closed surface (a rock) shows only its outer side, but the draws pick a fragment's side from
+    // the interpolated normal, whose sign turns a pixel or so inside the silhouette, where the inner
+    // side's transfer (the inside of the rock: no light) painted a black rim. Its outer side's
+    // transfer stands for both.
+    if (clump.farClosed) {
+        const size_t side = size_t(kTransferValues / 2) * 4;
+        for (uint32_t v = 0; v < vertexCount; ++v) {
+            float* values = p.transfer.data() + size_t(transferBase) * 4 + size_t(v) * kTransferValues * 4;
+            std::copy(values, values + side, values + side);
+        }
+    }
     const uint32_t variants = 2 * clump.yawBins;
     g.light = gpu::uvec4(uint32_t(p.lightVec4s), clump.yawBins, transferBase, vertexCount);
     p.lightVec4s += uint64_t(vertexCount) * variants * gpu::kLightVec4sPerVertex;
