@@ -6,14 +6,19 @@
 
 namespace meadow {
 
+float terrainMeshSpacing(const TerrainParams& terrain) {
+    const float finest = terrain.wavelength / float(1u << std::min(std::max(terrain.octaves, 1u) - 1u, 12u));
+    return std::clamp(finest / 5.0f, 0.5f, 2.0f);
+}
+
 FieldScenery fieldScenery(const Library& library, float lodTolerancePixels) {
     if (!(lodTolerancePixels > 0.0f))
         throw Error("fieldScenery: the LOD tolerance must be above 0 px");
     const PlacementStats& stats = library.field.stats;
     const glm::vec2 half = 0.5f * stats.tileSize * glm::vec2(float(stats.tilesX), float(stats.tilesY));
-    // 1 m spacing follows hills of tens of metres within millimetres; 20 m of margin ease them
-    // into the plain.
-    FieldScenery scenery{makeTerrainMesh(library.field.terrain, half, 20.0f, 1.0f), library.field.windDirection};
+    // 20 m of margin ease the hills into the plain.
+    FieldScenery scenery{makeTerrainMesh(library.field.terrain, half, 20.0f, terrainMeshSpacing(library.field.terrain)),
+                         library.field.windDirection};
     scenery.sky = library.sky;
     scenery.lodCount = kLodCount;
     gpu::GpuLodParams& p = scenery.lod;

@@ -25,6 +25,13 @@ inline float defaultFarRadius(float lodTolerancePixels) {
     return kDefaultFarRadiusPixels * lodTolerancePixels / kDefaultLodTolerancePixels;
 }
 
+// The spacing of the terrain mesh's grid, in m: a fifth of the finest octave's wavelength, at least
+// 0.5 and at most 2 (2 m in the bundled field). The mesh then lies within about 2 % of the amplitude
+// of the height the clumps stand on (2 cm there; 5 mm at 1 m). A 1 m grid drew four times the
+// triangles, 42,000, and lavapipe's draw pass took about 9 ms more for them, most of them slivers a
+// pixel high at the far side of the field (docs/BENCHMARKS.md, "The terrain at 2 m").
+float terrainMeshSpacing(const TerrainParams& terrain);
+
 // The library's terrain, wind direction, LOD choice and sky, as the field renderer draws them. The
 // switch radii put each LOD's error (RMS distance over simulated frames) at `lodTolerancePixels`
 // (> 0) for the clump whose error is largest for its size: they scale with it.

@@ -2,6 +2,7 @@
 // under the eye, the scripted input format and the keyboard shortcuts.
 #include "core/error.h"
 #include "library/terrain.h"
+#include "render/field_content.h"
 #include "ui/fly_camera.h"
 #include "ui/ground_height.h"
 #include "ui/input_script.h"
@@ -142,6 +143,34 @@ TEST(GroundHeight, FollowsTheTerrainMeshAsDrawn) {
     // The plain at -amplitude - 5 cm, out to the horizon ring; nothing beyond it.
     EXPECT_NEAR(*ground.at(300.0f, 40.0f), -1.05f, 1e-5f);
     EXPECT_FALSE(ground.at(5000.0f, 0.0f));
+}
+
+// The terrain mesh's grid: a fifth of the finest octave's wavelength, within [0.5, 2] m, and at that
+// spacing the bundled field's hills (amplitude 1 m, 40 m, 3 octaves) drawn within 2.5 cm of the
+// height the clumps stand on, over seeds.
+TEST(TerrainMesh, SpacingFollowsTheFinestOctave) {
+    TerrainParams params; // 1 m, 40 m, 3 octaves: the bundled field's
+    EXPECT_FLOAT_EQ(terrainMeshSpacing(params), 2.0f);
+    params.octaves = 4;
+    EXPECT_FLOAT_EQ(terrainMeshSpacing(params), 1.0f);
+    params.octaves = 12;
+    EXPECT_FLOAT_EQ(terrainMeshSpacing(params), 0.5f);
+    params.octaves = 1;
+    params.wavelength = 400.0f;
+    EXPECT_FLOAT_EQ(terrainMeshSpacing(params), 2.0f);
+    for (uint64_t seed : {0u, 1u, 7u}) {
+        TerrainParams bundled;
+        bundled.seed = seed;
+        const Mesh mesh = makeTerrainMesh(bundled, glm::vec2(30.0f), 20.0f, terrainMeshSpacing(bundled));
+        const GroundHeight ground(mesh);
+        const Terrain terrain(bundled);
+        float worst = 0.0f;
+        for (float x = -29.5f; x <= 29.5f; x += 0.173f)
+            for (float z = -29.5f; z <= 29.5f; z += 0.191f)
+                worst = std::max(worst, std::abs(*ground.at(x, z) - terrain.height(x, z)));
+        EXPECT_LT(worst, 0.025f) << "seed " << seed;
+        EXPECT_GT(worst, 0.002f) << "seed " << seed << ": a grid this close is finer than 2 m";
+    }
 }
 
 TEST(InputScript, ParsesEveryCommandInFrameOrder) {
