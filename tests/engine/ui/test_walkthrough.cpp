@@ -147,7 +147,7 @@ TEST(GroundHeight, FollowsTheTerrainMeshAsDrawn) {
 
 // The terrain mesh's grid: a fifth of the finest octave's wavelength, within [0.5, 2] m, and at that
 // spacing the bundled field's hills (amplitude 1 m, 40 m, 3 octaves) drawn within 2.5 cm of the
-// height the clumps stand on, over seeds.
+// height the clumps stand on, at three seeds.
 TEST(TerrainMesh, SpacingFollowsTheFinestOctave) {
     TerrainParams params; // 1 m, 40 m, 3 octaves: the bundled field's
     EXPECT_FLOAT_EQ(terrainMeshSpacing(params), 2.0f);
@@ -169,7 +169,8 @@ TEST(TerrainMesh, SpacingFollowsTheFinestOctave) {
             for (float z = -29.5f; z <= 29.5f; z += 0.191f)
                 worst = std::max(worst, std::abs(*ground.at(x, z) - terrain.height(x, z)));
         EXPECT_LT(worst, 0.025f) << "seed " << seed;
-        EXPECT_GT(worst, 0.002f) << "seed " << seed << ": a grid this close is finer than 2 m";
+        // A 1 m grid lies within about 5 mm: a departure above 8 mm says this is the 2 m one.
+        EXPECT_GT(worst, 0.008f) << "seed " << seed;
     }
 }
 
