@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Runs `meadow bench` from a fixed set of views over and across the default field, each ROUNDS
+# times, and writes a table (Markdown) of the frame time and the per-pass GPU time per view (the
+# median of the rounds' medians), plus every run's JSON: the "any view over or across the field"
+# of the 10 fps target (docs/BENCHMARKS.md).
+#   scripts/bench-views.sh [--meadow BIN] [--scene SCENE] [--preset P] [--size WxH] [--frames F]
+#                          [--rounds R] [--out DIR] [VIEWS...]
+# Defaults: the Release build (scripts/build.sh), the full preset, 1280x720, 30 frames, 1 round,
+# bench-views/ in the current folder, data/scenes/irises.json, every view below. VIEWS names some.
+# The views (eye x,y,z then target x,y,z, metres; the field is a 105 m square about the origin):
+#   default  the scene's camera          low     across the field from outside it, 1.2 m up
+#   high     high oblique, over a corner inside  among the irises at eye height
+#   diag     along the diagonal, 2 m up  down6   6 m up, looking down into the field
+#   side     from outside one side       top     40 m straight down on the middle
+#   aerial   far and high over a corner  walk    a walk at eye height, looking across
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+meadow="$root/build/engine/meadow"
+scene="$root/data/scenes/irises.json"
+size=1280x720
+frames=30
+rounds=1
+preset=full
+out="$PWD/bench-views"
+declare -A cameras=(
+  [default]="" [low]="-30,1.2,-30,0,0.4,0" [high]="-22,16,-22,4,0,4" [inside]="0,1.7,0,30,0.5,30"
+  [diag]="-60,2,-60,0,0,0" [down6]="0,6,0,10,0,10" [side]="0,1.5,-60,0,0.5,0" [top]="0,40,0.1,0,0,0"
+  [aerial]="-80,30,-80,0,0,0" [walk]="10,1.7,-20,-20,1.2,20")
+order=(default low high inside diag down6 side top aerial walk)
+views=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --meadow) meadow="$2"; shift 2 ;;
+    --scene) scene="$2"; shift 2 ;;
+    --preset) preset="$2"; shift 2 ;;
+    --size) size="$2"; shift 2 ;;
+    --frames) frames="$2"; shift 2 ;;
+    --rounds) rounds="$2"; shift 2 ;;
+    --out) out="$2"; shift 2 ;;
+    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -*) echo "bench-views: unknown option $1" >&2; exit 2 ;;
+    *)
+      if [ -z "${cameras[$1]+set}" ]; then
+        echo "bench-views: unknown view '$1' (views: ${order[*]})" >&2; exit 2
+      fi
+      views+=("$1"); shift ;;
+  esac
+done
+[[ "$rounds" =~ ^[1-9][0-9]*$ ]] || { echo "bench-views: --rounds needs a whole number from 1, not '$rounds'" >&2; exit 2; }
+[ ${#views[@]} -gt 0 ] || views=("${order[@]}")
+if [ ! -x "$meadow" ]; then
+  bash "$root/scripts/build.sh" "$root/build" -DCMAKE_BUILD_TYPE=Release
+fi
+mkdir -p "$out"
+# Rounds outside, views inside: a machine whose speed drifts moves every view alike.
+for ((r = 1; r <= rounds; ++r)); do
+  for v in "${views[@]}"; do
+    echo "bench-views: round $r of $rounds, view $v at $size, $frames frames" >&2
+    cam=(); [ -n "${cameras[$v]}" ] && cam=(--camera "${cameras[$v]}")
+    "$meadow" bench "$scene" --preset "$preset" --frames "$frames" --size "$size" "${cam[@]}" --json "$out/bench-$v-$r.json" > /dev/null
+  done
+done
+
+python3 - "$out" "$rounds" "${views[@]}" <<'EOF'
+import json, os, statistics, sys
+out, rounds, views = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
+runs = {v: [json.load(open(os.path.join(out, f"bench-{v}-{r}.json"))) for r in range(1, rounds + 1)] for v in views}
+first = runs[views[0]][0]
+passes = [p for p in ["animate", "cull", "light", "draw", "nearVertices", "nearRaster", "farSplat", "tonemap"]
+          if any(p in r["gpuMs"] for rs in runs.values() for r in rs)]
+med = lambda xs: statistics.median(xs)
+lines = [f"Device: {first['device']} ({first['vulkanDriver']}), {first['width']}x{first['height']}, "
+         f"{first['frames']} frames per run, {rounds} round(s); the median of the rounds' medians "
+         "(rounds: each round's frame median).", "",
+         "| view | frame ms | fps | rounds | p95 ms | " + " | ".join(f"{p} ms" for p in passes) + " |",
+         "|" + "---|" * (5 + len(passes))]
+for v in views:
+    rs = runs[v]
+    frame = med([r["frameMs"]["median"] for r in rs])
+    lines.append(f"| {v} | {frame:.1f} | {1000 / frame:.1f} | " +
+                 ", ".join(f"{r['frameMs']['median']:.1f}" for r in rs) +
+                 f" | {med([r['frameMs']['p95'] for r in rs]):.1f} | " +
+                 " | ".join(f"{med([r['gpuMs'].get(p, 0) for r in rs]):.1f}" for p in passes) + " |")
+worst = max(views, key=lambda v: med([r["frameMs"]["median"] for r in runs[v]]))
+lines += ["", f"Slowest view: {worst}, {med([r['frameMs']['median'] for r in runs[worst]]):.1f} ms."]
+table = "\n".join(lines) + "\n"
+open(os.path.join(out, "views.md"), "w").write(table)
+print(table)
+EOF
