@@ -16,6 +16,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 meadow="$root/build/engine/meadow"
+meadow_given=""
 scene="$root/data/scenes/irises.json"
 size=1280x720
 frames=30
@@ -30,7 +31,7 @@ order=(default low high inside diag down6 side top aerial walk)
 views=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --meadow) meadow="$2"; shift 2 ;;
+    --meadow) meadow="$2"; meadow_given=1; shift 2 ;;
     --scene) scene="$2"; shift 2 ;;
     --preset) preset="$2"; shift 2 ;;
     --size) size="$2"; shift 2 ;;
@@ -49,6 +50,9 @@ done
 [[ "$rounds" =~ ^[1-9][0-9]*$ ]] || { echo "bench-views: --rounds needs a whole number from 1, not '$rounds'" >&2; exit 2; }
 [ ${#views[@]} -gt 0 ] || views=("${order[@]}")
 if [ ! -x "$meadow" ]; then
+  if [ -n "$meadow_given" ]; then
+    echo "bench-views: --meadow $meadow is not an executable" >&2; exit 2
+  fi
   bash "$root/scripts/build.sh" "$root/build" -DCMAKE_BUILD_TYPE=Release
 fi
 mkdir -p "$out"
