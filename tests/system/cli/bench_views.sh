@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # scripts/bench-views.sh, the benchmark of the 10 fps target's views, on the ci field: it runs
 # the views it is given for every round, writes their table (a row per view, each round's median)
-# and every run's JSON; it refuses a view it does not know and a --meadow that is not there, naming
-# them, without running or writing anything.
+# and every run's JSON; it refuses a view it does not know, a --meadow that is not there and an
+# option without its value, naming them, without running or writing anything.
 #   bench_views.sh MEADOW SCENE OUT_DIR      (environment: the tests' lavapipe and cache)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../../.." && pwd)"
@@ -40,4 +40,9 @@ if bash "$root/scripts/bench-views.sh" --meadow "$out/no-such-meadow" --out "$ou
 fi
 grep -q "no-such-meadow is not an executable" "$out/bad.txt" || fail "the message does not name the missing binary: $(cat "$out/bad.txt")"
 [ ! -e "$out/bad" ] || fail "a missing --meadow still wrote $out/bad"
+if bash "$root/scripts/bench-views.sh" --meadow "$meadow" --out "$out/bad" --rounds 2> "$out/bad.txt"; then
+  fail "--rounds without a value was accepted"
+fi
+grep -q -- "--rounds needs a value" "$out/bad.txt" || fail "the message does not name the option: $(cat "$out/bad.txt")"
+[ ! -e "$out/bad" ] || fail "an option without its value still wrote $out/bad"
 echo "bench-views: ok"
