@@ -239,6 +239,44 @@ TEST_F(Gpu, TheSplatPassDrawsTheSamePictureWithAnyThreadsPerInstance) {
     }
 }
 
+// The LDR image is the HDR image tone mapped (tonemap.h: the exposure, ACES, then the sRGB curve,
+// which the shader takes from a fit by square roots): the exact curve on the CPU, from the HDR
+// image's half floats and the frame's exposure, gives every channel within one 8-bit step of it,
+// and nearly every one exactly (the fit lies within 0.012 of a step of the curve). A wrong
+// coefficient, toe or exposure breaks it.
+TEST_F(Gpu, TheLdrImageIsTheHdrImageToneMapped) {
+    const ComparisonField field = comparisonField(6.0f);
+    FieldRenderer renderer = createFieldRenderer(*context, field.clumps, field.instances, testAtlas(), field.scenery);
+    Offscreen offscreen = createOffscreen(*context, {160, 90}, HdrContents::Frame);
+    const FrameState state = frameState(field.camera, 160, 90);
+    renderOffscreenFrame(*context, renderer, offscreen, state);
+    const double exposure = frameUniforms(renderer, state).skyZenith.w;
+    const std::vector<uint8_t> ldr = readLdrPixels(*context, offscreen.targets);
+    const std::vector<uint16_t> hdr = readHdrPixels(*context, offscreen.targets);
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
+    ASSERT_EQ(ldr.size(), hdr.size());
+    auto srgb = [](double c) { return c > 0.0031308 ? 1.055 * std::pow(c, 1.0 / 2.4) - 0.055 : 12.92 * c; };
+    auto aces = [](double x) { return std::clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0); };
+    size_t exact = 0, channels = 0;
+    int worst = 0;
+    std::vector<bool> seen(256, false);
+    for (size_t i = 0; i < ldr.size(); ++i) {
+        if (i % 4 == 3)
+            continue; // alpha
+        const double x = double(glm::unpackHalf1x16(hdr[i])) * exposure;
+        const int expected = int(std::lround(255.0 * srgb(aces(x))));
+        const int difference = std::abs(int(ldr[i]) - expected);
+        worst = std::max(worst, difference);
+        exact += difference == 0;
+        ++channels;
+        seen[ldr[i]] = true;
+    }
+    EXPECT_LE(worst, 1);
+    EXPECT_GT(double(exact), 0.97 * double(channels));
+    EXPECT_GT(std::count(seen.begin(), seen.end(), true), 100) << "the frame spans the curve";
+}
+
 // Targets made for the LDR image alone (the bench's and the window's, HdrContents::MeshPass) resolve
 // the far field without storing it into the HDR image: the same picture, byte for byte, and an HDR
 // image without the far field's pixels, which readHdrPixels refuses to hand out.
