@@ -15,9 +15,16 @@ MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer VisibleList { uint visible[]; };
 layout(set = 0, binding = 2, std430) readonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
 layout(set = 0, binding = 3, std430) readonly buffer Clumps { GpuClump clumps[]; };
-layout(set = 0, binding = 4, std430) readonly buffer LodVertices { GpuLodVertex lodVertices[]; };
-layout(set = 0, binding = 5, std430) readonly buffer MotionData { float motionData[]; };
-layout(set = 0, binding = 6, std430) readonly buffer VertexLight { uvec4 vertexLight[]; };
+// The vertex's data, its motion and its light through texel views of the buffers (the compute
+// passes' own: near_vertices.comp), not storage buffers: llvmpipe loads a storage buffer lane by lane,
+// each word behind its own branch, and a texel with one gather. A LOD 0 vertex plays up to a few
+// dozen modes, each a coordinate and a basis row, on lavapipe's one front-end thread
+// (docs/BENCHMARKS.md, 2026-12-02).
+layout(set = 0, binding = 4) uniform usamplerBuffer lodVertices; // GpuLodVertex: 3 texels each
+layout(set = 0, binding = 5) uniform samplerBuffer motionData;   // the coordinates, a float each
+layout(set = 0, binding = 6) uniform usamplerBuffer vertexLight;
+layout(set = 0, binding = 8) uniform samplerBuffer motionRows; // motionData's basis rows, a texel each
+#include "clump_motion.glsl"
 // xz: the unit normal of the vertical plane that holds the wind direction the clumps were
 // simulated in. A mirrored instance (negative scale) reflects about it before its yaw, so it
 // still sways downwind (placement/instance.h).
@@ -40,35 +47,27 @@ void main() {
     GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
     float fade = inst.pose.w;
 
-    GpuLodVertex v = lodVertices[gl_VertexIndex];
-    uint rank = v.motion.w & 0xffffu;
-    uint lod = (entry & kLodFarMeshEntryBit) != 0u ? kLodFar : v.motion.w >> 16u;
+    int index = gl_VertexIndex;
+    vec4 positionU = uintBitsToFloat(texelFetch(lodVertices, 3 * index));
+    vec4 normalV = uintBitsToFloat(texelFetch(lodVertices, 3 * index + 1));
+    uvec4 motion = texelFetch(lodVertices, 3 * index + 2);
+    uint lod = (entry & kLodFarMeshEntryBit) != 0u ? kLodFar : motion.w >> 16u;
 
     // x̄ + U q, q blended across a graph jump (motion_step.h): the old path's weight fades from 1.
-    // (Vertex shading is lavapipe's single-threaded stage: loads are what it pays for, so the old
-    // path's coordinates are read only while a blend runs.)
     // (A lavapipe crash once blamed on this loop's shape came from Mesa's shader cache handing
     // 256-bit vertex code to a 128-bit process: docs/ROBUSTNESS.md.)
-    uint q0 = inst.offsets.x + v.motion.y, q1 = inst.offsets.y + v.motion.y;
-    bool blending = inst.pose.z > 0.0;
-    vec3 d = vec3(0.0);
-    for (uint k = 0u; k < rank; ++k) {
-        uint row = 4u * (v.motion.x + k);
-        float q = motionData[q0 + k];
-        if (blending)
-            q = mix(q, motionData[q1 + k], inst.pose.z);
-        d += vec3(motionData[row], motionData[row + 1u], motionData[row + 2u]) * q;
-    }
+    vec3 d = clumpVertexDisplacement(motion, inst);
 
     // Irradiance of both sides to first order in d, for this instance's light variant (its yaw
     // bin, mirrored or not: light.comp), from half floats: (E, gradient) per side and channel.
-    uint base = inst.offsets.z + v.motion.z * (inst.offsets.w & 0xffffu);
-    clumpVertexLight(vertexLight[base], vertexLight[base + 1u], vertexLight[base + 2u], d, outFront, outBack);
+    int base = int(inst.offsets.z + motion.z * (inst.offsets.w & 0xffffu));
+    clumpVertexLight(texelFetch(vertexLight, base), texelFetch(vertexLight, base + 1),
+                     texelFetch(vertexLight, base + 2), d, outFront, outBack);
 
-    vec3 n = v.normalV.xyz;
-    vec3 world = clumpVertexWorld(inst, v.positionU.xyz + d, n, mirrorNormal.xz);
+    vec3 n = normalV.xyz;
+    vec3 world = clumpVertexWorld(inst, positionU.xyz + d, n, mirrorNormal.xz);
     gl_Position = frame.viewProj * vec4(world, 1.0);
-    outUvFacing = vec3(v.positionU.w, v.normalV.w, dot(n, frame.cameraPosition.xyz - world));
+    outUvFacing = vec3(positionU.w, normalV.w, dot(n, frame.cameraPosition.xyz - world));
     vec4 albedo = clumps[inst.offsets.w >> 16u].albedo; // w 1: constant albedo instead of the atlas
     uint facts = lodDitherLevel(fade) | ((entry & kLodFadeEntryBit) != 0u ? kClumpFadeLodBit : 0u) |
                  (fade > 0.0 ? kClumpFadingBit : 0u) | (albedo.w > 0.5 ? kClumpConstantAlbedoBit : 0u) |

@@ -244,13 +244,11 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     if (r.farField)
         r.farSampleTexels =
             createTexelBufferView(ctx, r.farSamples, VK_FORMAT_R32G32B32A32_UINT, 16, "the far samples");
-    if (r.farField || r.nearRasterOn) {
-        r.lodVertexTexels =
-            createTexelBufferView(ctx, r.lodVertices, VK_FORMAT_R32G32B32A32_UINT, 16, "the LOD vertices");
-        r.motionTexels = createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32_SFLOAT, 4, "the motion data");
-        r.motionRowTexels =
-            createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "the motion basis rows");
-    }
+    // Read by the mesh pass's vertex shader, the near raster's vertex pass and the splat pass.
+    r.lodVertexTexels = createTexelBufferView(ctx, r.lodVertices, VK_FORMAT_R32G32B32A32_UINT, 16, "the LOD vertices");
+    r.motionTexels = createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32_SFLOAT, 4, "the motion data");
+    r.motionRowTexels =
+        createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "the motion basis rows");
     if (r.nearRasterOn)
         r.indexTexels = createTexelBufferView(ctx, r.indices, VK_FORMAT_R32_UINT, 4, "the LOD meshes' indices");
     r.transferTexels = createTexelBufferView(ctx, r.transfer, VK_FORMAT_R32G32B32A32_SFLOAT, 16, "the light transfer");
@@ -646,8 +644,10 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 
     bindPipeline(ctx, cmd, r.instance,
-                 {r.frameUniforms, r.visibleList, r.drawInstances, r.clumps, r.lodVertices, r.motionData, r.vertexLight,
-                  Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.atlasSampler)});
+                 {r.frameUniforms, r.visibleList, r.drawInstances, r.clumps, Binding(r.lodVertexTexels),
+                  Binding(r.motionTexels), Binding(r.vertexLightTexels),
+                  Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.atlasSampler),
+                  Binding(r.motionRowTexels)});
     pushConstants(ctx, cmd, r.instance, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdBindIndexBuffer(cmd, r.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
     for (uint32_t lod = 0; lod < r.lodCount; ++lod)

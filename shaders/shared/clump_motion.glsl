@@ -1,8 +1,8 @@
 // A clump vertex's displacement from its mean pose for an instance's motion-graph state,
 // d = sum over its modes k of U_k q_k (docs/ARCHITECTURE.md, Motion), read from texel buffers:
-// shared by near_vertices.comp (the near raster's vertices) and far_splat.comp (the far field's
-// samples, which move with their last-LOD vertex). instance.vert sums the same from storage
-// buffers. Needs draw_instance.h (GpuDrawInstance), and two views of the motion data declared before
+// shared by instance.vert (the mesh pass), near_vertices.comp (the near raster's vertices) and
+// far_splat.comp (the far field's samples, which move with their last-LOD vertex). Needs
+// draw_instance.h (GpuDrawInstance), and two views of the motion data declared before
 // it is included: `motionData`, a samplerBuffer of floats (the coordinates), and `motionRows`, one
 // of RGBA32F texels (the basis rows, one texel each: field_packing.cpp).
 
