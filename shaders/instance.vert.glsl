@@ -12,14 +12,14 @@
 #include "clump_vertex.glsl"
 
 MEADOW_FRAME_BLOCK(0, 0)
-layout(set = 0, binding = 1, std430) readonly buffer VisibleList { uint visible[]; };
-layout(set = 0, binding = 2, std430) readonly buffer DrawInstances { GpuDrawInstance drawInstances[]; };
-layout(set = 0, binding = 3, std430) readonly buffer Clumps { GpuClump clumps[]; };
-// The vertex's data, its motion and its light through texel views of the buffers (the compute
-// passes' own: near_vertices.comp), not storage buffers: llvmpipe loads a storage buffer lane by lane,
-// each word behind its own branch, and a texel with one gather. A LOD 0 vertex plays up to a few
-// dozen modes, each a coordinate and a basis row, on lavapipe's one front-end thread
-// (docs/BENCHMARKS.md, 2026-12-02).
+// Every read is a texel fetch, from texel views of the buffers (the compute passes' own, where they
+// read the same), not a storage buffer load: llvmpipe loads a storage buffer lane by lane, each word
+// behind its own branch, and a texel with one gather. The instance's words are read per vertex, and
+// a LOD 0 vertex plays up to a few dozen modes, each a coordinate and a basis row, on lavapipe's one
+// front-end thread (docs/BENCHMARKS.md, 2026-12-02).
+layout(set = 0, binding = 1) uniform usamplerBuffer visible;       // the visible list, a word each
+layout(set = 0, binding = 2) uniform usamplerBuffer drawInstances; // GpuDrawInstance: 3 texels each
+layout(set = 0, binding = 3) uniform usamplerBuffer clumps;        // GpuClump: kClumpTexels each
 layout(set = 0, binding = 4) uniform usamplerBuffer lodVertices; // GpuLodVertex: 3 texels each
 layout(set = 0, binding = 5) uniform samplerBuffer motionData;   // the coordinates, a float each
 layout(set = 0, binding = 6) uniform usamplerBuffer vertexLight;
@@ -43,8 +43,12 @@ layout(location = 2) out vec3 outBack;
 layout(location = 3) flat out uvec4 outClump;
 
 void main() {
-    uint entry = visible[gl_InstanceIndex];
-    GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
+    uint entry = texelFetch(visible, gl_InstanceIndex).r;
+    int record = 3 * int(entry & kLodEntryIndexMask);
+    GpuDrawInstance inst;
+    inst.positionScale = uintBitsToFloat(texelFetch(drawInstances, record));
+    inst.pose = uintBitsToFloat(texelFetch(drawInstances, record + 1));
+    inst.offsets = texelFetch(drawInstances, record + 2);
     float fade = inst.pose.w;
 
     int index = gl_VertexIndex;
@@ -68,7 +72,8 @@ void main() {
     vec3 world = clumpVertexWorld(inst, positionU.xyz + d, n, mirrorNormal.xz);
     gl_Position = frame.viewProj * vec4(world, 1.0);
     outUvFacing = vec3(positionU.w, normalV.w, dot(n, frame.cameraPosition.xyz - world));
-    vec4 albedo = clumps[inst.offsets.w >> 16u].albedo; // w 1: constant albedo instead of the atlas
+    // w 1: constant albedo instead of the atlas.
+    vec4 albedo = uintBitsToFloat(texelFetch(clumps, int(kClumpTexels * (inst.offsets.w >> 16u) + kClumpAlbedoTexel)));
     uint facts = lodDitherLevel(fade) | ((entry & kLodFadeEntryBit) != 0u ? kClumpFadeLodBit : 0u) |
                  (fade > 0.0 ? kClumpFadingBit : 0u) | (albedo.w > 0.5 ? kClumpConstantAlbedoBit : 0u) |
                  (lod << kClumpLodShift);

@@ -215,9 +215,9 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     const std::vector<float> lodStart(instances.size(), 0.0f);
     deviceBuffer(r.lodState, lodStart.data(), lodStart.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.clumps, p.clumps.data(), p.clumps.size() * sizeof(gpu::GpuClump),
-                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT); // read back by the CPU-driven path
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels); // read back by the CPU-driven path
     deviceBuffer(r.drawInstances, nullptr, instances.size() * sizeof(gpu::GpuDrawInstance),
-                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     deviceBuffer(r.lodVertices, p.lodVertices.data(), p.lodVertices.size() * sizeof(gpu::GpuLodVertex),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     deviceBuffer(r.motionData, p.motionData.data(), p.motionData.size() * sizeof(float),
@@ -238,13 +238,19 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
     r.drawCommandTemplate = createBuffer(
         ctx, drawBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
     uploadToBuffer(ctx, r.drawCommandTemplate, p.draws.data(), drawBytes);
-    deviceBuffer(r.visibleList, nullptr, size_t(p.visibleCount) * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.visibleList, nullptr, size_t(p.visibleCount) * sizeof(uint32_t),
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     deviceBuffer(r.farSamples, p.farSamples.data(), p.farSamples.size() * sizeof(gpu::GpuFarSample),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     if (r.farField)
         r.farSampleTexels =
             createTexelBufferView(ctx, r.farSamples, VK_FORMAT_R32G32B32A32_UINT, 16, "the far samples");
-    // Read by the mesh pass's vertex shader, the near raster's vertex pass and the splat pass.
+    // Read by the mesh pass's vertex shader (all of these), the near raster's vertex pass and the
+    // splat pass.
+    r.visibleTexels = createTexelBufferView(ctx, r.visibleList, VK_FORMAT_R32_UINT, 4, "the visible list");
+    r.drawInstanceTexels =
+        createTexelBufferView(ctx, r.drawInstances, VK_FORMAT_R32G32B32A32_UINT, 16, "the draw records");
+    r.clumpTexels = createTexelBufferView(ctx, r.clumps, VK_FORMAT_R32G32B32A32_UINT, 16, "the clumps");
     r.lodVertexTexels = createTexelBufferView(ctx, r.lodVertices, VK_FORMAT_R32G32B32A32_UINT, 16, "the LOD vertices");
     r.motionTexels = createTexelBufferView(ctx, r.motionData, VK_FORMAT_R32_SFLOAT, 4, "the motion data");
     r.motionRowTexels =
@@ -353,8 +359,9 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
                         &r.nearVertices, &r.nearRaster, &r.nearRasterLodView})
         destroyPipeline(ctx, *p);
     for (VkBufferView* view :
-         {&r.transferTexels, &r.farSampleTexels, &r.lodVertexTexels, &r.motionTexels, &r.motionRowTexels,
-          &r.vertexLightTexels, &r.groundTexelStartTexels, &r.groundEntryTexels, &r.indexTexels, &r.nearShadedTexels})
+         {&r.transferTexels, &r.farSampleTexels, &r.visibleTexels, &r.drawInstanceTexels, &r.clumpTexels,
+          &r.lodVertexTexels, &r.motionTexels, &r.motionRowTexels, &r.vertexLightTexels, &r.groundTexelStartTexels,
+          &r.groundEntryTexels, &r.indexTexels, &r.nearShadedTexels})
         if (*view) {
             vkDestroyBufferView(ctx.device, *view, nullptr);
             *view = VK_NULL_HANDLE;
@@ -644,8 +651,8 @@ void recordDrawPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const R
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 
     bindPipeline(ctx, cmd, r.instance,
-                 {r.frameUniforms, r.visibleList, r.drawInstances, r.clumps, Binding(r.lodVertexTexels),
-                  Binding(r.motionTexels), Binding(r.vertexLightTexels),
+                 {r.frameUniforms, Binding(r.visibleTexels), Binding(r.drawInstanceTexels), Binding(r.clumpTexels),
+                  Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels),
                   Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.atlasSampler),
                   Binding(r.motionRowTexels)});
     pushConstants(ctx, cmd, r.instance, &r.mirrorNormal, sizeof(glm::vec4));

@@ -46,6 +46,7 @@ static_assert(offsetof(GpuClump, albedo) == 96);
 static_assert(offsetof(GpuClump, far) == 112);
 static_assert(offsetof(GpuClump, farGain) == 128);
 static_assert(sizeof(GpuClump) == 208);
+static_assert(sizeof(GpuClump) == 16 * kClumpTexels && offsetof(GpuClump, albedo) == 16 * kClumpAlbedoTexel);
 static_assert(kFarGainSizes == 5 && kFarGainElevations == 4, "GpuClump::farGain holds 5 sizes of 4 elevations");
 static_assert(offsetof(GpuFarSample, position) == 0);
 static_assert(offsetof(GpuFarSample, data) == 16);

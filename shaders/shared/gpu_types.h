@@ -127,6 +127,9 @@ struct GpuClump {
                       // hidden, 0: two-sided sheets
     vec4 farGain[5];  // the far field's coverage gains (far_splat.h): [size bin], its elevation bins in xyzw
 };
+// A GpuClump read as RGBA32 texels (instance.vert): how many it takes, and which is its albedo.
+MEADOW_CONST kClumpTexels = 13;
+MEADOW_CONST kClumpAlbedoTexel = 6;
 
 // One surface sample of a clump for the far field (precompute/library/far_samples.h), as the
 // splat pass reads it (32 bytes).
