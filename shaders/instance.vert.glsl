@@ -9,7 +9,6 @@
 #include "common.glsl"
 #include "lod_select.h"
 #include "draw_instance.h"
-#include "clump_vertex.glsl"
 
 MEADOW_FRAME_BLOCK(0, 0)
 // Every read is a texel fetch, from texel views of the buffers (the compute passes' own, where they
@@ -25,6 +24,7 @@ layout(set = 0, binding = 5) uniform samplerBuffer motionData;   // the coordina
 layout(set = 0, binding = 6) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 8) uniform samplerBuffer motionRows; // motionData's basis rows, a texel each
 #include "clump_motion.glsl"
+#include "clump_vertex.glsl"
 // xz: the unit normal of the vertical plane that holds the wind direction the clumps were
 // simulated in. A mirrored instance (negative scale) reflects about it before its yaw, so it
 // still sways downwind (placement/instance.h).
@@ -51,27 +51,14 @@ void main() {
     inst.offsets = texelFetch(drawInstances, record + 2);
     float fade = inst.pose.w;
 
-    int index = gl_VertexIndex;
-    vec4 positionU = uintBitsToFloat(texelFetch(lodVertices, 3 * index));
-    vec4 normalV = uintBitsToFloat(texelFetch(lodVertices, 3 * index + 1));
-    uvec4 motion = texelFetch(lodVertices, 3 * index + 2);
-    uint lod = (entry & kLodFarMeshEntryBit) != 0u ? kLodFar : motion.w >> 16u;
-
-    // x̄ + U q, q blended across a graph jump (motion_step.h): the old path's weight fades from 1.
-    // (A lavapipe crash once blamed on this loop's shape came from Mesa's shader cache handing
+    // (A lavapipe crash once blamed on the motion loop's shape came from Mesa's shader cache handing
     // 256-bit vertex code to a 128-bit process: docs/ROBUSTNESS.md.)
-    vec3 d = clumpVertexDisplacement(motion, inst);
-
-    // Irradiance of both sides to first order in d, for this instance's light variant (its yaw
-    // bin, mirrored or not: light.comp), from half floats: (E, gradient) per side and channel.
-    int base = int(inst.offsets.z + motion.z * (inst.offsets.w & 0xffffu));
-    clumpVertexLight(texelFetch(vertexLight, base), texelFetch(vertexLight, base + 1),
-                     texelFetch(vertexLight, base + 2), d, outFront, outBack);
-
-    vec3 n = normalV.xyz;
-    vec3 world = clumpVertexWorld(inst, positionU.xyz + d, n, mirrorNormal.xz);
-    gl_Position = frame.viewProj * vec4(world, 1.0);
-    outUvFacing = vec3(positionU.w, normalV.w, dot(n, frame.cameraPosition.xyz - world));
+    ClumpVertex v = shadeClumpVertex(uint(gl_VertexIndex), inst, mirrorNormal.xz);
+    gl_Position = v.clip;
+    outUvFacing = v.uvFacing;
+    outFront = v.front;
+    outBack = v.back;
+    uint lod = (entry & kLodFarMeshEntryBit) != 0u ? kLodFar : v.lod;
     // w 1: constant albedo instead of the atlas.
     vec4 albedo = uintBitsToFloat(texelFetch(clumps, int(kClumpTexels * (inst.offsets.w >> 16u) + kClumpAlbedoTexel)));
     uint facts = lodDitherLevel(fade) | ((entry & kLodFadeEntryBit) != 0u ? kClumpFadeLodBit : 0u) |

@@ -12,7 +12,6 @@
 #include "draw_instance.h"
 #include "near_raster.h"
 #include "work_order.h"
-#include "clump_vertex.glsl"
 
 // The width is the device's (near_raster.h): specialization constant 0.
 layout(local_size_x = kNearGroupSize, local_size_x_id = 0) in;
@@ -28,34 +27,8 @@ layout(set = 0, binding = 7) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 8, std430) writeonly buffer NearVertices { uvec4 nearVertices[]; }; // 2 per vertex
 layout(set = 0, binding = 9) uniform samplerBuffer motionRows; // motionData's basis rows, a texel each
 #include "clump_motion.glsl"
+#include "clump_vertex.glsl"
 layout(push_constant) uniform NearParams { vec4 mirrorNormal; }; // as instance.vert's
-
-// One vertex as instance.vert makes it: clip position, the light of both sides / pi, uv and the
-// facing term n . (eye - x).
-struct NearVertex {
-    vec4 clip;
-    vec3 front;
-    vec3 back;
-    vec3 uvFacing;
-    uint lod; // the LOD the debug view shows
-};
-
-NearVertex shadeVertex(uint index, GpuDrawInstance inst) {
-    NearVertex o;
-    vec4 positionU = uintBitsToFloat(texelFetch(lodVertices, int(3u * index)));
-    vec4 normalV = uintBitsToFloat(texelFetch(lodVertices, int(3u * index + 1u)));
-    uvec4 motion = texelFetch(lodVertices, int(3u * index + 2u));
-    vec3 d = clumpVertexDisplacement(motion, inst);
-    uint base = inst.offsets.z + motion.z * (inst.offsets.w & 0xffffu);
-    clumpVertexLight(texelFetch(vertexLight, int(base)), texelFetch(vertexLight, int(base + 1u)),
-                     texelFetch(vertexLight, int(base + 2u)), d, o.front, o.back);
-    vec3 n = normalV.xyz;
-    vec3 world = clumpVertexWorld(inst, positionU.xyz + d, n, mirrorNormal.xz);
-    o.clip = frame.viewProj * vec4(world, 1.0);
-    o.uvFacing = vec3(positionU.w, normalV.w, dot(n, frame.cameraPosition.xyz - world));
-    o.lod = motion.w >> 16u;
-    return o;
-}
 
 void main() {
     uint total = nearDispatch.count;
@@ -66,7 +39,7 @@ void main() {
         GpuDrawInstance inst = drawInstances[listed.x & kLodEntryIndexMask];
         uvec4 mesh = nearMeshes[listed.y];
         for (uint v = gl_LocalInvocationID.x; v < mesh.y; v += gl_WorkGroupSize.x) {
-            NearVertex o = shadeVertex(mesh.x + v, inst);
+            ClumpVertex o = shadeClumpVertex(mesh.x + v, inst, mirrorNormal.xz);
             // Every listed instance lies in front of the near plane (the cull pass's test): w > 0.
             float invW = 1.0 / o.clip.w;
             vec2 pixel = (o.clip.xy * invW * 0.5 + 0.5) * size;
