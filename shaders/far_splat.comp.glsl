@@ -4,13 +4,13 @@
 // dispatch, then every gl_NumWorkGroups-th set), gl_WorkGroupSize.x / kFarInstancesPerGroup threads
 // striding over `count` of each one's clump's shuffled samples, a run from the instance's own start
 // (farSampleStart). Each sample moves with the last-LOD vertex it follows (x̄ + U q at that LOD's
-// modes, blended across graph jumps, as instance.vert) and takes the light of its triangle's
-// nearest vertex to first order in that displacement, projects to a square of `side` pixels, and is
-// kept (while the instance crossfades from LOD 4) where the dither gives the pixel to the far
-// field. The nearest sample of a pixel wins by a 64-bit atomicMin of (depth key, RGB9E5 radiance),
-// which is order independent; far_resolve.comp writes the winners that are nearer than the meshes'
-// depth (far_splat.h's farWordShows: the same picture as testing each sample, with no depth fetch
-// in the loop below).
+// modes, blended across graph jumps, as instance.vert; its first two rows in one texel,
+// GpuFarMotion) and takes the light of its triangle's nearest vertex to first order in that
+// displacement, projects to a square of `side` pixels, and is kept (while the instance crossfades
+// from LOD 4) where the dither gives the pixel to the far field. The nearest sample of a pixel
+// wins by a 64-bit atomicMin of (depth key, RGB9E5 radiance), which is order independent;
+// far_resolve.comp writes the winners that are nearer than the meshes' depth (far_splat.h's
+// farWordShows: the same picture as testing each sample, with no depth fetch in the loop below).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -40,9 +40,39 @@ layout(set = 0, binding = 9, std430) buffer Visibility { uint64_t visibility[]; 
 // For each instance's bounding sphere (the cull pass's): the coin's bound below.
 layout(set = 0, binding = 10, std430) readonly buffer Instances { GpuInstance instances[]; };
 layout(set = 0, binding = 11) uniform samplerBuffer motionRows; // motionData's basis rows, a texel each
-#include "clump_motion.glsl"
+layout(set = 0, binding = 12) uniform usamplerBuffer farMotion;  // GpuFarMotion per GpuLodVertex
 // As instance.vert: the mirror plane's normal (xz).
 layout(push_constant) uniform FarParams { vec4 mirrorNormal; };
+
+// A sample's displacement from its mean pose, d = sum over its last-LOD vertex's modes k of U_k q_k
+// (clump_motion.glsl's sum), from that vertex's far motion texel (GpuFarMotion): the first two rows
+// as half floats, zero past the rank, so that a sample reads no row of its own where the last LOD
+// plays one or two modes (the bundled irises' at most); further rows, if any, from motionRows (those
+// of `vertex`, its GpuLodVertex). The coordinates are the far field's copy of the last LOD's
+// (GpuClump::motion.x), a frame's in one or two cache lines: `frames` holds where the instance's two
+// frames start there.
+vec3 farSampleDisplacement(uvec4 motion, uint vertex, uvec2 frames, GpuDrawInstance inst) {
+    uint rank = motion.w >> kFarMotionRankShift;
+    vec3 d = vec3(0.0);
+    if (rank > 0u) {
+        uint coordinate = motion.w & kFarMotionOffsetMask, second = rank > 1u ? 1u : 0u;
+        uint q0 = frames.x + coordinate, q1 = frames.y + coordinate;
+        float qa = texelFetch(motionData, int(q0)).r, qb = texelFetch(motionData, int(q0 + second)).r;
+        if (inst.pose.z > 0.0) {
+            qa = mix(qa, texelFetch(motionData, int(q1)).r, inst.pose.z);
+            qb = mix(qb, texelFetch(motionData, int(q1 + second)).r, inst.pose.z);
+        }
+        vec2 a = unpackHalf2x16(motion.x), b = unpackHalf2x16(motion.y), c = unpackHalf2x16(motion.z);
+        d = vec3(a, b.x) * qa + vec3(b.y, c) * qb;
+        for (uint k = 2u; k < rank; ++k) {
+            float q = texelFetch(motionData, int(q0 + k)).r;
+            if (inst.pose.z > 0.0)
+                q = mix(q, texelFetch(motionData, int(q1 + k)).r, inst.pose.z);
+            d += texelFetch(motionRows, int(texelFetch(lodVertices, int(3u * vertex + 2u)).x + k)).xyz * q;
+        }
+    }
+    return d;
+}
 
 // far_samples.h's octahedral normal.
 vec3 unpackOctahedralNormal(uint packed) {
@@ -87,6 +117,10 @@ void main() {
             eye -= 2.0 * dot(eye, m) * m;
         float azimuth = farEyeAzimuth(eye.x, eye.z);
         uint start = farSampleStart(instance, clump.far.y);
+        // Where the instance's two frames (draw_instance.h: offsets.x and .y) start in the far
+        // field's coordinates (GpuClump::motion.x, graphSizes.w per frame).
+        uvec2 farFrames =
+            clump.motion.x + (inst.offsets.xy - clump.motion.y) / max(clump.motion.z, 1u) * clump.graphSizes.w;
         uint next = lane;
         // A bound on every sample's coverage coin (below): its footprint at the nearest depth its
         // instance reaches, facing the eye. clip.w is at least the depth of the bounding sphere's
@@ -128,8 +162,10 @@ void main() {
                 break;
             uint k = next;
             next += lanes;
-            farSample.data = texelFetch(farSamples, int(2u * (clump.far.x + farSampleSlot(start, k, clump.far.y)) + 1u));
-            vec3 d = clumpVertexDisplacement(texelFetch(lodVertices, int(3u * farSample.data.w + 2u)), inst);
+            uint slot = clump.far.x + farSampleSlot(start, k, clump.far.y);
+            farSample.data = texelFetch(farSamples, int(2u * slot + 1u));
+            uint vertex = farSample.data.w;
+            vec3 d = farSampleDisplacement(texelFetch(farMotion, int(vertex)), vertex, farFrames, inst);
             vec3 p = uintBitsToFloat(farSample.position.xyz) + d, n = unpackOctahedralNormal(farSample.data.x);
             if (mirrored) {
                 p -= 2.0 * dot(p, m) * m;

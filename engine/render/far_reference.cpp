@@ -1,7 +1,5 @@
 #include "render/far_reference.h"
 
-#include "render/reference_motion.h"
-
 #include "core/error.h"
 #include "far_splat.h"
 #include "lod_select.h"
@@ -36,6 +34,37 @@ template <typename T> const T& at(const std::vector<T>& values, size_t index, co
         throw Error(std::string("farSplatReference: ") + what + " index " + std::to_string(index) + " is outside its " +
                     std::to_string(values.size()) + " entries");
     return values[index];
+}
+
+// far_splat.comp's farSampleDisplacement: the first two rows from the sample's motion texel (half
+// floats), further ones from motionData's rows.
+glm::vec3 farSampleDisplacement(const FarSplatInputs& in, const gpu::GpuFarSample& farSample, const glm::uvec2& frames,
+                                const gpu::GpuDrawInstance& inst) {
+    const std::vector<float>& motionData = in.motionData;
+    const gpu::GpuFarMotion& motion = at(in.farMotion, farSample.data.w, "far motion");
+    const uint32_t rank = motion.rows.w >> gpu::kFarMotionRankShift;
+    if (rank == 0u)
+        return glm::vec3(0.0f);
+    const uint32_t coordinate = motion.rows.w & gpu::kFarMotionOffsetMask, second = rank > 1u ? 1u : 0u;
+    const uint32_t q0 = frames.x + coordinate, q1 = frames.y + coordinate;
+    const bool blending = inst.pose.z > 0.0f;
+    auto coordinateAt = [&](uint32_t first, uint32_t k) {
+        float q = at(motionData, size_t(first) + k, "motion coordinate");
+        if (blending)
+            q = glm::mix(q, at(motionData, size_t(q1) + k, "motion coordinate"), inst.pose.z);
+        return q;
+    };
+    const float qa = coordinateAt(q0, 0u), qb = coordinateAt(q0, second);
+    const glm::vec2 a = glm::unpackHalf2x16(motion.rows.x), b = glm::unpackHalf2x16(motion.rows.y),
+                    c = glm::unpackHalf2x16(motion.rows.z);
+    glm::vec3 d = glm::vec3(a, b.x) * qa + glm::vec3(b.y, c) * qb;
+    for (uint32_t k = 2; k < rank; ++k) {
+        const size_t row = 4u * (size_t(at(in.lodVertices, farSample.data.w, "LOD vertex").motion.x) + k);
+        d += glm::vec3(at(motionData, row, "motion row"), at(motionData, row + 1u, "motion row"),
+                       at(motionData, row + 2u, "motion row")) *
+             coordinateAt(q0, k);
+    }
+    return d;
 }
 
 } // namespace
@@ -76,6 +105,8 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
             eye -= 2.0f * glm::dot(eye, m) * m;
         const float azimuth = gpu::farEyeAzimuth(eye.x, eye.z);
         const uint32_t start = gpu::farSampleStart(instance, clump.far.y);
+        const glm::uvec2 farFrames = clump.motion.x + (glm::uvec2(inst.offsets.x, inst.offsets.y) - clump.motion.y) /
+                                                          std::max(clump.motion.z, 1u) * clump.graphSizes.w;
         for (uint32_t k = 0; k < count; ++k) {
             const gpu::GpuFarSample& farSample =
                 at(in.farSamples, size_t(clump.far.x) + gpu::farSampleSlot(start, k, clump.far.y), "far sample");
@@ -84,8 +115,7 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
                                         gpu::farSampleRandom(instance, k + gpu::kFarElevationStream));
             if ((farSample.position.w >> bit & 1u) == 0u)
                 continue;
-            const gpu::GpuLodVertex& v = at(in.lodVertices, farSample.data.w, "LOD vertex");
-            const glm::vec3 d = clumpVertexDisplacement(in.motionData, v.motion, inst, "farSplatReference");
+            const glm::vec3 d = farSampleDisplacement(in, farSample, farFrames, inst);
             glm::vec3 p = glm::uintBitsToFloat(glm::uvec3(farSample.position)) + d,
                       n = unpackOctahedralNormal(farSample.data.x);
             if (mirrored) {

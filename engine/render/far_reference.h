@@ -23,6 +23,7 @@ struct FarSplatInputs {
     std::vector<gpu::GpuClump> clumps;
     std::vector<gpu::GpuFarSample> farSamples;
     std::vector<gpu::GpuLodVertex> lodVertices;
+    std::vector<gpu::GpuFarMotion> farMotion;
     std::vector<float> motionData;
     std::vector<glm::uvec4> vertexLight;
 };

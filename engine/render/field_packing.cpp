@@ -112,15 +112,68 @@ uint32_t packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount,
     return lastLodBase;
 }
 
-// The far field's samples into farSamples, each pointing at the GpuLodVertex of the last LOD it
-// follows (its motion rows at that LOD's modes) and at the clump vertex whose light it takes:
-// GpuClump::far.
+// The far field's motion coordinates: per frame, the last LOD's coordinates of each block in turn
+// (its first ranks[lastLod]), appended to motionData at GpuClump::motion.x, GpuClump::graphSizes.w
+// of them per frame. A far instance's samples then read one or two cache lines of a frame's
+// coordinates instead of one per block spread over all of them: on lavapipe, about 6 ms less of the
+// splat pass at 1280x720 on a 2-core Zen 3, with GpuFarMotion (docs/BENCHMARKS.md, 2026-12-02
+// (morning)). Returns each block's first far coordinate in a frame.
+std::vector<uint32_t> packFarCoordinates(const FieldClump& clump, uint32_t lastLod, FieldPacking& p, gpu::GpuClump& g) {
+    const MotionBasis& motion = clump.motion;
+    std::vector<uint32_t> first(motion.blocks.size(), 0u);
+    uint32_t perFrame = 0;
+    for (size_t b = 0; b < motion.blocks.size(); ++b) {
+        first[b] = perFrame;
+        perFrame += motion.blocks[b].ranks[lastLod];
+    }
+    g.motion.x = uint32_t(p.motionData.size());
+    g.graphSizes.w = motion.frames > 0 ? perFrame : 0u;
+    if (motion.frames == 0)
+        return first;
+    const size_t modesPerFrame = motion.modesPerFrame();
+    for (uint32_t f = 0; f < motion.frames; ++f)
+        for (const MotionBlock& block : motion.blocks)
+            for (uint32_t k = 0; k < block.ranks[lastLod]; ++k)
+                p.motionData.push_back(motion.coords[f * modesPerFrame + block.coordOffset + k]);
+    return first;
+}
+
+// A far sample's GpuFarMotion: the motion of the last-LOD vertex it follows (`motion`, its
+// GpuLodVertex::motion), its first two rows as half floats (zero past its rank) and its block's
+// first far coordinate (`farFirst`, packFarCoordinates). The splat pass then reads a sample's motion
+// as one texel rather than its LOD vertex's and one per mode. A half float holds a row to 2^-11 of
+// itself (about 10 µm of a clump's sway); rows below the smallest normal half are stored as 0.
+gpu::uvec4 farSampleMotion(const FieldPacking& p, const gpu::uvec4& motion, uint32_t farFirst, size_t clumpIndex) {
+    const uint32_t rank = motion.w & 0xffffu;
+    if (farFirst > gpu::kFarMotionOffsetMask || rank >= (1u << (32u - gpu::kFarMotionRankShift)))
+        throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample's motion (coordinate " +
+                    std::to_string(farFirst) + ", rank " + std::to_string(rank) + ") does not fit its word");
+    float rows[6] = {};
+    for (uint32_t k = 0; k < std::min(rank, 2u); ++k)
+        for (uint32_t c = 0; c < 3; ++c) {
+            const float value = p.motionData[4 * size_t(motion.x + k) + c];
+            if (!(std::abs(value) <= 65504.0f))
+                throw Error("field clump " + std::to_string(clumpIndex) + ": a motion row holds " +
+                            std::to_string(value) + ", beyond a half float");
+            rows[3 * k + c] = std::abs(value) < 6.103515625e-05f ? 0.0f : value;
+        }
+    return gpu::uvec4(glm::packHalf2x16(glm::vec2(rows[0], rows[1])), glm::packHalf2x16(glm::vec2(rows[2], rows[3])),
+                      glm::packHalf2x16(glm::vec2(rows[4], rows[5])), farFirst | (rank << gpu::kFarMotionRankShift));
+}
+
+// The far field's samples into farSamples, each with the motion of the last LOD's vertex it
+// follows (its rows at that LOD's modes: farSampleMotion) and the clump vertex whose light it
+// takes: GpuClump::far.
 void packFar(const FieldClump& clump, size_t clumpIndex, uint32_t lastLodBase, FieldPacking& p, gpu::GpuClump& g) {
-    const std::vector<uint32_t>& lastLod = clump.lods.back().vertices;
+    const std::vector<uint32_t>& lastLodVertices = clump.lods.back().vertices;
     std::vector<uint32_t> slot(clump.mesh.vertices.size(), UINT32_MAX);
-    for (uint32_t k = 0; k < uint32_t(lastLod.size()); ++k)
-        slot[lastLod[k]] = k;
+    for (uint32_t k = 0; k < uint32_t(lastLodVertices.size()); ++k)
+        slot[lastLodVertices[k]] = k;
     const uint32_t first = uint32_t(p.farSamples.size());
+    const uint32_t lastLod = uint32_t(std::min<size_t>(clump.lods.size(), kLodCount) - 1);
+    const std::vector<uint32_t> farFirst = packFarCoordinates(clump, lastLod, p, g);
+    const bool moving = clump.motion.frames > 0;
+    p.farMotion.resize(p.lodVertices.size());
     for (const FarSample& s : clump.far) {
         if (s.vertex >= slot.size() || slot[s.vertex] == UINT32_MAX)
             throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample follows vertex " +
@@ -130,9 +183,17 @@ void packFar(const FieldClump& clump, size_t clumpIndex, uint32_t lastLodBase, F
         if (s.lightVertex >= clump.mesh.vertices.size())
             throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample is lit by vertex " +
                         std::to_string(s.lightVertex) + " of " + std::to_string(clump.mesh.vertices.size()));
+        const gpu::uvec4 motion = p.lodVertices[lastLodBase + slot[s.vertex]].motion;
         p.farSamples.push_back(
             {gpu::uvec4(glm::floatBitsToUint(s.position), s.visibility),
              gpu::uvec4(s.normal, gpu::packRgb9e5(r, gr, b), s.lightVertex, lastLodBase + slot[s.vertex])});
+        const uint32_t block = moving ? clump.motion.vertexBlock[s.vertex] : 0u;
+        if (moving && (motion.w & 0xffffu) != clump.motion.blocks[block].ranks[lastLod])
+            throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample's vertex plays " +
+                        std::to_string(motion.w & 0xffffu) + " modes at its last LOD, its block " +
+                        std::to_string(clump.motion.blocks[block].ranks[lastLod]));
+        p.farMotion[lastLodBase + slot[s.vertex]] = {
+            farSampleMotion(p, motion, moving ? farFirst[block] : 0u, clumpIndex)};
     }
     if (!clump.far.empty() && !(clump.farArea > 0.0f && std::isfinite(clump.farArea)))
         throw Error("field clump " + std::to_string(clumpIndex) + ": its far-field samples cover " +
@@ -285,6 +346,7 @@ FieldPacking packField(std::span<const FieldClump> clumps, std::span<const gpu::
     }
     if (p.lightVec4s > (uint64_t(1) << 31) / 16 || p.motionData.size() > (size_t(1) << 31))
         throw Error("the field's clumps need more than 2 GiB of light or motion data");
+    p.farMotion.resize(p.lodVertices.size());
     packInstances(clumps, instances, lodCount, p);
     return p;
 }

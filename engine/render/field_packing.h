@@ -32,6 +32,7 @@ struct FieldPacking {
     uint32_t visibleCount = 0;                     // the visible list's length: every bucket's range
     std::vector<gpu::GpuMotionState> states;       // per instance: where its walk starts
     std::vector<gpu::GpuFarSample> farSamples;     // per clump its far-field samples (GpuClump::far)
+    std::vector<gpu::GpuFarMotion> farMotion;      // per GpuLodVertex, set for the last LODs' (far samples follow)
 };
 
 // Throws meadow::Error naming "field clump <index>" for a clump the renderer cannot draw: no

@@ -188,8 +188,9 @@ void checkMemory(Context& ctx, const FieldPacking& p, size_t instanceCount, size
         2 * p.draws.size() * sizeof(gpu::GpuDrawIndexedCommand) + uint64_t(atlas.width) * atlas.height * 8 +
         uint64_t(mapSize.width) * mapSize.height * 8 + uint64_t(day.imageWidth) * day.imageHeight * 8 +
         scenery.terrain.vertices.size() * sizeof(gpu::GpuVertex) + scenery.terrain.indices.size() * sizeof(uint32_t) +
-        p.farSamples.size() * sizeof(gpu::GpuFarSample) + uint64_t(instanceCount) * 8 + sizeof(gpu::GpuFarDispatch) +
-        ground.texelStart.size() * sizeof(uint32_t) + ground.entries.size() * sizeof(glm::uvec2) +
+        p.farSamples.size() * sizeof(gpu::GpuFarSample) + p.farMotion.size() * sizeof(gpu::GpuFarMotion) +
+        uint64_t(instanceCount) * 8 + sizeof(gpu::GpuFarDispatch) + ground.texelStart.size() * sizeof(uint32_t) +
+        ground.entries.size() * sizeof(glm::uvec2) +
         (scenery.nearRaster ? uint64_t(gpu::kNearMaxVertices) * 32 + uint64_t(instanceCount) * 32 : 0);
     checkFieldMemory(ctx, neededBytes,
                      "the field (" + std::to_string(instanceCount) + " instances of " + std::to_string(clumpCount) +
@@ -242,9 +243,14 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
     deviceBuffer(r.farSamples, p.farSamples.data(), p.farSamples.size() * sizeof(gpu::GpuFarSample),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
-    if (r.farField)
+    deviceBuffer(r.farMotion, p.farMotion.data(), p.farMotion.size() * sizeof(gpu::GpuFarMotion),
+                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | texels);
+    if (r.farField) {
         r.farSampleTexels =
             createTexelBufferView(ctx, r.farSamples, VK_FORMAT_R32G32B32A32_UINT, 16, "the far samples");
+        r.farMotionTexels =
+            createTexelBufferView(ctx, r.farMotion, VK_FORMAT_R32G32B32A32_UINT, 16, "the far samples' motion");
+    }
     // Read by the mesh pass's vertex shader (all of these), the near raster's vertex pass and the
     // splat pass.
     r.visibleTexels = createTexelBufferView(ctx, r.visibleList, VK_FORMAT_R32_UINT, 4, "the visible list");
@@ -266,7 +272,7 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
         createTexelBufferView(ctx, r.groundTexelStart, VK_FORMAT_R32_UINT, 4, "the ground light map's texels");
     r.groundEntryTexels =
         createTexelBufferView(ctx, r.groundEntries, VK_FORMAT_R32G32_UINT, 8, "the ground light map's lists");
-    // (lodVertices, motionData, farSamples, farList and farDispatch are read back by the splat pass's
+    // (lodVertices, motionData, farSamples, farMotion, farList and farDispatch are read back by the splat pass's
     // reference test.)
     deviceBuffer(r.farList, nullptr, instances.size() * 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.farDispatch, nullptr, sizeof(gpu::GpuFarDispatch),
@@ -359,19 +365,19 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
                         &r.nearVertices, &r.nearRaster, &r.nearRasterLodView})
         destroyPipeline(ctx, *p);
     for (VkBufferView* view :
-         {&r.transferTexels, &r.farSampleTexels, &r.visibleTexels, &r.drawInstanceTexels, &r.clumpTexels,
-          &r.lodVertexTexels, &r.motionTexels, &r.motionRowTexels, &r.vertexLightTexels, &r.groundTexelStartTexels,
-          &r.groundEntryTexels, &r.indexTexels, &r.nearShadedTexels})
+         {&r.transferTexels, &r.farSampleTexels, &r.farMotionTexels, &r.visibleTexels, &r.drawInstanceTexels,
+          &r.clumpTexels, &r.lodVertexTexels, &r.motionTexels, &r.motionRowTexels, &r.vertexLightTexels,
+          &r.groundTexelStartTexels, &r.groundEntryTexels, &r.indexTexels, &r.nearShadedTexels})
         if (*view) {
             vkDestroyBufferView(ctx.device, *view, nullptr);
             *view = VK_NULL_HANDLE;
         }
-    for (Buffer* b : {&r.frameUniforms, &r.instances,    &r.motionStates,  &r.lodState,         &r.drawInstances,
-                      &r.clumps,        &r.lodVertices,  &r.indices,       &r.motionData,       &r.motionGraph,
-                      &r.transfer,      &r.vertexLight,  &r.skyData,       &r.drawCommands,     &r.drawCommandTemplate,
-                      &r.visibleList,   &r.stats,        &r.statsReadback, &r.terrainVertices,  &r.terrainIndices,
-                      &r.farSamples,    &r.farList,      &r.farDispatch,   &r.groundTexelStart, &r.groundEntries,
-                      &r.nearList,      &r.nearDispatch, &r.nearMeshes,    &r.nearShaded})
+    for (Buffer* b : {&r.frameUniforms, &r.instances,   &r.motionStates,  &r.lodState,        &r.drawInstances,
+                      &r.clumps,        &r.lodVertices, &r.indices,       &r.motionData,      &r.motionGraph,
+                      &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,    &r.drawCommandTemplate,
+                      &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices, &r.terrainIndices,
+                      &r.farSamples,    &r.farMotion,   &r.farList,       &r.farDispatch,     &r.groundTexelStart,
+                      &r.groundEntries, &r.nearList,    &r.nearDispatch,  &r.nearMeshes,      &r.nearShaded})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     destroyImage(ctx, r.groundLight);
@@ -719,7 +725,7 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
     bindPipeline(ctx, cmd, splat,
                  {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, Binding(r.farSampleTexels),
                   Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), t.farVisibility,
-                  r.instances, Binding(r.motionRowTexels)});
+                  r.instances, Binding(r.motionRowTexels), Binding(r.farMotionTexels)});
     pushConstants(ctx, cmd, splat, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdDispatchIndirect(cmd, r.farDispatch.buffer, 0);
 }

@@ -164,13 +164,15 @@ struct FieldRenderer {
     Buffer drawCommandTemplate; // the same with instanceCount 0: copied over them every frame
     Buffer visibleList;
     Buffer farSamples; // gpu::GpuFarSample, per clump its shuffled samples
+    Buffer farMotion;  // gpu::GpuFarMotion, per far sample
     // Buffers seen as texel buffers, as the shaders read them: transfer and vertexLight (the light
     // pass, light.comp, and the ground light map, ground_map.comp); visibleList, drawInstances,
     // clumps, lodVertices, motionData and vertexLight (the mesh pass's vertex shader, instance.vert;
     // the near raster's vertex pass and the splat pass read the last four so too); with the far field
-    // farSamples (far_splat.comp).
+    // farSamples and farMotion (far_splat.comp).
     VkBufferView transferTexels = VK_NULL_HANDLE;
     VkBufferView farSampleTexels = VK_NULL_HANDLE;
+    VkBufferView farMotionTexels = VK_NULL_HANDLE;
     VkBufferView visibleTexels = VK_NULL_HANDLE;
     VkBufferView drawInstanceTexels = VK_NULL_HANDLE;
     VkBufferView clumpTexels = VK_NULL_HANDLE;

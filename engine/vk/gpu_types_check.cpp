@@ -51,6 +51,7 @@ static_assert(kFarGainSizes == 5 && kFarGainElevations == 4, "GpuClump::farGain 
 static_assert(offsetof(GpuFarSample, position) == 0);
 static_assert(offsetof(GpuFarSample, data) == 16);
 static_assert(sizeof(GpuFarSample) == 32);
+static_assert(sizeof(GpuFarMotion) == 16);
 static_assert(offsetof(GpuFarDispatch, groupsX) == 0);
 static_assert(offsetof(GpuFarDispatch, groupsY) == 4);
 static_assert(offsetof(GpuFarDispatch, groupsZ) == 8);

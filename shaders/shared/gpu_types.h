@@ -110,10 +110,10 @@ struct GpuInstance {
 // One clump (or rock) of the field: where its data lie in the shared buffers. Static meshes have
 // no motion modes and a one-node motion graph.
 struct GpuClump {
-    uvec4 motion;     // x unused, y first coordinate (motionData), z coordinates
-                      // per frame, w frames
+    uvec4 motion;     // x first far-field coordinate (motionData: per frame the last LOD's coordinates,
+                      // GpuFarMotion), y first coordinate (motionData), z coordinates per frame, w frames
     uvec4 graph;      // offsets into motionGraph: x edgeStart, y edgeTarget, z edgeWeight, w naturalNext
-    uvec4 graphSizes; // x edges, y wind levels, z blend frames, w unused
+    uvec4 graphSizes; // x edges, y wind levels, z blend frames, w far-field coordinates per frame (motion.x)
     uvec4 light;      // x first vec4 in vertexLight, y light variants per mirror state (yaw bins),
                       // z first value in transfer, w vertices
     vec4 yawBins;     // x lowest yaw, y bins per radian (0: one bin), z bin width (radians), w ground grid
@@ -139,6 +139,18 @@ struct GpuFarSample {
     uvec4 data;     // x normal (octahedral snorm16 pair), y linear albedo (RGB9E5, far_splat.h), z the clump vertex
                     // whose light it takes, w the GpuLodVertex of the last LOD whose motion it follows
 };
+// The motion of a last-LOD vertex as far samples follow it (farMotion, in GpuLodVertex order, set
+// for the last LOD's vertices): a texel that the splat pass reads instead of the vertex's motion
+// word and a row per mode.
+struct GpuFarMotion {
+    uvec4 rows; // xyz its first two rows as half floats (x: row 0's x and y, y: row 0's z and row 1's x, z: row
+                // 1's y and z; zero past its rank), w its block's first far-field coordinate in a frame
+                // (GpuClump::motion.x) | its rank << kFarMotionRankShift (far_splat.comp's
+                // farSampleDisplacement)
+};
+// GpuFarSample::motion.w: the rank above the coordinate offset.
+MEADOW_CONST kFarMotionRankShift = 24;
+MEADOW_CONST kFarMotionOffsetMask = 0xffffff;
 
 // One vertex of a clump's LOD mesh, pulled by gl_VertexIndex: the clump vertex at its mean pose
 // and where its motion rows and light lie. LODs share clump vertices, so a vertex appears once

@@ -98,13 +98,14 @@ std::vector<gpu::GpuInstance> scatter(uint32_t count, uint32_t seed) {
     return out;
 }
 
-FieldClump movingClump(uint32_t dims) {
+FieldClump movingClump(uint32_t dims, uint32_t lastLodRank) {
     FieldClump clump = staticFieldClump(makeTuftMesh(7), kLodCount);
     test::SyntheticMotion synthetic = test::makeSyntheticMotion(4, 2, 90, dims, 5);
     clump.graph = buildMotionGraph(synthetic.q, synthetic.clips, MotionGraphParams{});
     MotionBasis& m = clump.motion;
     m.frames = uint32_t(synthetic.q.cols());
-    const uint32_t ranks[kLodCount] = {dims, 4, 2, 1, 1};
+    const uint32_t ranks[kLodCount] = {dims, std::max(4u, lastLodRank), std::max(2u, lastLodRank),
+                                       std::max(1u, lastLodRank), lastLodRank};
     for (uint32_t l = 0; l < kLodCount; ++l)
         m.lodModes[l] = std::min(ranks[l], dims);
     m.blocks.push_back(MotionBlock{0, {m.lodModes[0], m.lodModes[1], m.lodModes[2], m.lodModes[3], m.lodModes[4]}});

@@ -38,6 +38,8 @@ std::vector<gpu::GpuInstance> scatter(uint32_t count, uint32_t seed);
 // A moving clump: the tuft with a synthetic motion library (four wind levels of damped,
 // gust-driven coordinates, as a simulated clump's PCA coordinates behave), its real motion graph,
 // and random basis rows in one block of `dims` modes (LODs play 6, 4, 2, 1, 1 of them).
-FieldClump movingClump(uint32_t dims = 6);
+// A moving tuft: `dims` modes at LOD 0, then 4, 2, 1 and 1, each at least `lastLodRank` (the modes
+// its last LOD plays, which the far field's samples follow).
+FieldClump movingClump(uint32_t dims = 6, uint32_t lastLodRank = 1);
 
 } // namespace meadow::test

@@ -118,9 +118,9 @@ struct ComparisonField {
     Camera camera;
 };
 
-ComparisonField comparisonField(float farRadius) {
+ComparisonField comparisonField(float farRadius, uint32_t lastLodRank = 1) {
     ComparisonField f;
-    f.clumps = {movingClump(), staticFieldClump(makeTuftMesh(3), kLodCount)};
+    f.clumps = {movingClump(6, lastLodRank), staticFieldClump(makeTuftMesh(3), kLodCount)};
     for (FieldClump& clump : f.clumps)
         giveFarSamples(clump);
     f.instances = scatter(4000, 29);
@@ -363,9 +363,10 @@ WordComparison compareWords(const std::vector<uint64_t>& gpuWords, const std::ve
 // rounding of a pixel edge, a coverage threshold or another sample's depth (the shader may fuse a
 // multiply-add the C++ rounds twice): at most 1 % of the covered pixels. Everywhere else the
 // words agree: the same nearest sample, with the same depth and colour.
-TEST_F(Gpu, SplatPassMatchesCpuReference) {
+static void splatPassMatchesCpuReference(Context& ctx, uint32_t lastLodRank) {
+    Context* context = &ctx;
     // 320x180, the far field below 6 px: most of the field.
-    ComparisonField field = comparisonField(6.0f);
+    ComparisonField field = comparisonField(6.0f, lastLodRank);
     FieldRenderer renderer = createFieldRenderer(*context, field.clumps, field.instances, testAtlas(), field.scenery);
     const VkExtent2D extent{320, 180};
     Offscreen offscreen = createOffscreen(*context, extent);
@@ -387,6 +388,8 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
         readAll<gpu::GpuFarSample>(*context, renderer.farSamples, renderer.farSamples.size / sizeof(gpu::GpuFarSample));
     in.lodVertices = readAll<gpu::GpuLodVertex>(*context, renderer.lodVertices,
                                                 renderer.lodVertices.size / sizeof(gpu::GpuLodVertex));
+    in.farMotion =
+        readAll<gpu::GpuFarMotion>(*context, renderer.farMotion, renderer.farMotion.size / sizeof(gpu::GpuFarMotion));
     in.motionData = readAll<float>(*context, renderer.motionData, renderer.motionData.size / sizeof(float));
     in.vertexLight = readAll<glm::uvec4>(*context, renderer.vertexLight, renderer.vertexLight.size / 16);
     const std::vector<float> meshDepth = readFarDepth(*context, offscreen.targets);
@@ -444,6 +447,17 @@ TEST_F(Gpu, SplatPassMatchesCpuReference) {
     EXPECT_EQ(wrong, 0u) << "of " << resolved << " pixels the far field won";
     EXPECT_GT(hidden, 100u) << "samples behind the meshes: the resolve's depth test is exercised";
     EXPECT_LE(hiddenButWritten, hidden / 20) << "of " << hidden << " pixels whose sample lies behind the meshes";
+}
+
+// The moving clump's last LOD (which its far samples follow) playing one mode, as the test field's.
+TEST_F(Gpu, SplatPassMatchesCpuReference) {
+    splatPassMatchesCpuReference(*context, 1);
+}
+
+// ...and three: the sample's motion texel holds the first two rows (GpuFarMotion), the third comes
+// from the motion rows.
+TEST_F(Gpu, SplatPassMatchesCpuReferenceWithThreeModesAtTheLastLod) {
+    splatPassMatchesCpuReference(*context, 3);
 }
 
 // The sky blend pass against its CPU reference: every texel of the backdrop is the two sky frames
