@@ -164,7 +164,7 @@ struct FieldRenderer {
     Buffer drawCommandTemplate; // the same with instanceCount 0: copied over them every frame
     Buffer visibleList;
     Buffer farSamples; // gpu::GpuFarSample, per clump its shuffled samples
-    Buffer farMotion;  // gpu::GpuFarMotion, per far sample
+    Buffer farMotion;  // gpu::GpuFarMotion, per GpuLodVertex (set for the last LODs' vertices)
     // Buffers seen as texel buffers, as the shaders read them: transfer and vertexLight (the light
     // pass, light.comp, and the ground light map, ground_map.comp); visibleList, drawInstances,
     // clumps, lodVertices, motionData and vertexLight (the mesh pass's vertex shader, instance.vert;
