@@ -135,7 +135,14 @@ void main() {
             // The far field's reference: the instance at LOD 0 in its place, marked for the LOD view.
             append(first, (farFade ? index | kLodFadeEntryBit : index) | kLodFarMeshEntryBit);
             atomicAdd(stats.farInstances, 1u);
-        } else if (far || farFade)
-            appendFar(farFade ? index | kLodFadeEntryBit : index, clumps[inst.mesh], scale, frame.lodScreen.x / dist);
+        } else if (far || farFade) {
+            // The samples follow the surface's projected area at the sphere's centre: its depth
+            // (clip w, written out so that the CPU's sums match) and distance (farPixelsPerMetre).
+            precise float depth = max(frame.viewProj[0][3] * center.x + frame.viewProj[1][3] * center.y +
+                                          frame.viewProj[2][3] * center.z + frame.viewProj[3][3],
+                                      1e-3);
+            appendFar(farFade ? index | kLodFadeEntryBit : index, clumps[inst.mesh], scale,
+                      farPixelsPerMetre(frame.lodScreen.x, depth, dist));
+        }
     }
 }

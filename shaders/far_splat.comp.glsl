@@ -111,7 +111,8 @@ void main() {
         vec3 toEye = frame.cameraPosition.xyz - inst.positionScale.xyz;
         float elevation = farEyeElevation(toEye.x, toEye.y, toEye.z);
         float baseW = max((frame.viewProj * vec4(inst.positionScale.xyz, 1.0)).w, 1e-3);
-        float gain = farCoverageGain(clump, farInstanceSize(area, frame.lodScreen.x, baseW), elevation);
+        float gain = farCoverageGain(
+            clump, farInstanceSize(area, farPixelsPerMetre(frame.lodScreen.x, baseW, length(toEye))), elevation);
         vec3 eye = toEye * yaw;
         if (mirrored)
             eye -= 2.0 * dot(eye, m) * m;
@@ -122,22 +123,25 @@ void main() {
         uvec2 farFrames =
             clump.motion.x + (inst.offsets.xy - clump.motion.y) / max(clump.motion.z, 1u) * clump.graphSizes.w;
         uint next = lane;
-        // A bound on every sample's coverage coin (below): its footprint at the nearest depth its
-        // instance reaches, facing the eye. clip.w is at least the depth of the bounding sphere's
-        // centre less its radius, taken twice over (the sphere holds the simulated motion, the modes
-        // replay it to within their error); then a sample's footprint (farSampleFootprint, |cosine|
-        // at most 1) is at most coinBound, and one whose random number is at least coinBound loses
+        // A bound on every sample's coverage coin (below): its footprint at the nearest depth and
+        // the farthest distance its instance reaches, facing the eye. clip.w is at least the depth
+        // of the bounding sphere's centre less its radius, taken twice over (the sphere holds the
+        // simulated motion, the modes replay it to within their error), and the distance to the
+        // eye at most the centre's plus as much; then a sample's footprint (farSampleFootprint and
+        // farPixelsPerMetre, |cosine| at most 1) is at most coinBound, and one whose random number
+        // is at least coinBound loses
         // the coin below. Such samples are passed over in the search, before their motion and light
         // are computed (docs/BENCHMARKS.md, "The coverage coin tossed in the search"). The same
         // samples win as without it; without a bound (the sphere reaching the eye's plane) none is
         // passed over.
         float radius = instances[instance].boundingRadius * scale;
         vec3 wRow = vec3(frame.viewProj[0][3], frame.viewProj[1][3], frame.viewProj[2][3]);
-        float wMin = dot(wRow, inst.positionScale.xyz + vec3(0.0, 0.5 * radius, 0.0)) + frame.viewProj[3][3] -
-                     2.0 * radius * length(wRow);
+        vec3 centre = inst.positionScale.xyz + vec3(0.0, 0.5 * radius, 0.0);
+        float wMin = dot(wRow, centre) + frame.viewProj[3][3] - 2.0 * radius * length(wRow);
         float coinBound = 2.0;
         if (wMin > 0.0) {
-            float pixelsPerMetre = frame.lodScreen.x / wMin;
+            float dMax = length(frame.cameraPosition.xyz - centre) + 2.0 * radius;
+            float pixelsPerMetre = farPixelsPerMetre(frame.lodScreen.x, wMin, dMax);
             coinBound = areaPerSample * (pixelsPerMetre * pixelsPerMetre) * gain * 1.001;
         }
         for (;;) {
@@ -181,10 +185,13 @@ void main() {
             // Stochastic coverage: below a pixel of footprint, the sample covers its pixel with
             // that probability; above, a square of about its footprint.
             vec3 toEye = frame.cameraPosition.xyz - world;
-            float cosine = dot(yaw * n, toEye) / max(length(toEye), 1e-6);
+            float eyeDistance = length(toEye);
+            float cosine = dot(yaw * n, toEye) / max(eyeDistance, 1e-6);
             if (cosine < 0.0 && clump.far.w != 0u)
                 continue; // the far side of a closed surface: hidden by its near side
-            float footprint = farSampleFootprint(areaPerSample, frame.lodScreen.x / clip.w, cosine) * gain;
+            float footprint =
+                farSampleFootprint(areaPerSample, farPixelsPerMetre(frame.lodScreen.x, clip.w, eyeDistance), cosine) *
+                gain;
             if (footprint < 1.0 && coin >= footprint)
                 continue;
             uint side = farSplatSide(footprint);

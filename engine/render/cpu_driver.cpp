@@ -130,11 +130,14 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
             glm::vec3(inst.positionScale) + glm::vec3(0.0f, inst.boundingRadius * scale * 0.5f, 0.0f);
         const glm::vec3 d3 = center - glm::vec3(frame.cameraPosition);
         const float dist = std::max(std::sqrt(d3.x * d3.x + d3.y * d3.y + d3.z * d3.z), 1e-3f);
+        const glm::mat4& vp = frame.viewProj;
+        const float depth = std::max(vp[0][3] * center.x + vp[1][3] * center.y + vp[2][3] * center.z + vp[3][3], 1e-3f);
         const gpu::GpuClump& clump = d.clumps[inst.mesh];
         float area;
         std::memcpy(&area, &clump.far.z, sizeof area);
         const uint32_t count =
-            gpu::farSampleCount(area * scale * scale, frame.lodScreen.x / dist, frame.lodScreen.y, clump.far.y);
+            gpu::farSampleCount(area * scale * scale, gpu::farPixelsPerMetre(frame.lodScreen.x, depth, dist),
+                                frame.lodScreen.y, clump.far.y);
         const uint32_t item[2] = {entry, count};
         std::memcpy(hostWriteAt(ctx, d.staging, d.farListAt + size_t(d.farEntries) * sizeof item, sizeof item), item,
                     sizeof item);

@@ -99,7 +99,9 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
         const glm::vec3 toEye = glm::vec3(frame.cameraPosition) - base;
         const float elevation = gpu::farEyeElevation(toEye.x, toEye.y, toEye.z);
         const float baseW = std::max((frame.viewProj * glm::vec4(base, 1.0f)).w, 1e-3f);
-        const float gain = gpu::farCoverageGain(clump, gpu::farInstanceSize(area, frame.lodScreen.x, baseW), elevation);
+        const float gain = gpu::farCoverageGain(
+            clump, gpu::farInstanceSize(area, gpu::farPixelsPerMetre(frame.lodScreen.x, baseW, glm::length(toEye))),
+            elevation);
         glm::vec3 eye = toEye * yaw;
         if (mirrored)
             eye -= 2.0f * glm::dot(eye, m) * m;
@@ -130,10 +132,14 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
             if (ndc.z <= 0.0f || ndc.z > 1.0f)
                 continue;
             const glm::vec3 toEye = glm::vec3(frame.cameraPosition) - world;
-            const float cosine = glm::dot(yaw * n, toEye) / std::max(glm::length(toEye), 1e-6f);
+            const float eyeDistance = glm::length(toEye);
+            const float cosine = glm::dot(yaw * n, toEye) / std::max(eyeDistance, 1e-6f);
             if (cosine < 0.0f && clump.far.w != 0u)
                 continue;
-            const float footprint = gpu::farSampleFootprint(areaPerSample, frame.lodScreen.x / clip.w, cosine) * gain;
+            const float footprint =
+                gpu::farSampleFootprint(areaPerSample, gpu::farPixelsPerMetre(frame.lodScreen.x, clip.w, eyeDistance),
+                                        cosine) *
+                gain;
             if (footprint < 1.0f && gpu::farSampleRandom(instance, k) >= footprint)
                 continue;
             const int side = int(gpu::farSplatSide(footprint));

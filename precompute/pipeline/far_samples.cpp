@@ -306,31 +306,47 @@ struct CalibrationView {
     // sees the ground just in front of it, where a mesh's fragment, which lies on the ray, loses
     // none.)
     bool groundHides(int row, float towardEye) const {
+        // Seen level, what the test below gives as the eye rises from level: the ground hides the
+        // rows wholly below its line, not the one it crosses (that row's ground reaches as far back
+        // as the clump's base). Hiding every row whose centre lies below the line, the level view
+        // took a row more from a clump a few pixels high than any view even a degree above it, and
+        // the table's 0 degree gains, which the splat pass interpolates up to 30 degrees, came out
+        // 1.6 times a rock's at 1 degree at 2 px (docs/BENCHMARKS.md, "The far field's footprints
+        // off the optical axis").
         if (sinElevation < 1e-6f)
-            return rowUp(row) < 0.0f; // seen level: below the ground line is ground
+            return rowUp(row) < -0.5f / pixelsPerMetre;
         const float centre = groundTowardEye(row);
         return !(towardEye >
                  gpu::farMeshDepthLimit(centre, centre, centre, groundTowardEye(row - 1), groundTowardEye(row + 1)));
     }
 };
 
-// LOD 0's covered pixels in a view: pixel centres inside a triangle, alpha-tested.
-size_t rasterisedCoverage(const FarSurface& surface, const CalibrationView& view) {
-    std::vector<uint8_t> covered(size_t(view.grid) * size_t(view.grid), 0);
+// LOD 0's covered pixels in a view, as the mesh pass's expected coverage over where a pixel's centre
+// may fall: points on a grid of `sub` x `sub` per pixel inside a triangle, alpha-tested, counted in
+// pixels. In the field a clump lies anywhere on the pixel grid, so what its LOD 0 covers on average
+// is that integral over the pixel, not the count of the calibration views' own pixel centres: for a
+// clump a few pixels across, those were a few dozen over all 32 views, and which leaves met a
+// centre was chance; the gains came out jagged in size (0.79 to 1.12 between 2 and 4 px) and,
+// interpolated between the table's bins, the far field covered up to 20 % too much or too little
+// there (docs/BENCHMARKS.md, "The far field's footprints off the optical axis").
+double rasterisedCoverage(const FarSurface& surface, const CalibrationView& view, int sub) {
+    const int grid = view.grid * sub;
+    const float scale = float(sub);
+    std::vector<uint8_t> covered(size_t(grid) * size_t(grid), 0);
     for (size_t t = 0; t + 2 < surface.indices.size(); t += 3) {
         const uint32_t i0 = surface.indices[t], i1 = surface.indices[t + 1], i2 = surface.indices[t + 2];
-        const glm::vec2 a = view.pixel(surface.positions[i0]), b = view.pixel(surface.positions[i1]),
-                        c = view.pixel(surface.positions[i2]);
+        const glm::vec2 a = view.pixel(surface.positions[i0]) * scale, b = view.pixel(surface.positions[i1]) * scale,
+                        c = view.pixel(surface.positions[i2]) * scale;
         const float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
         if (!(std::abs(area) > 1e-12f))
             continue; // edge-on: covers no pixel centre
         const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, c.x}) - 0.5f)));
-        const int x1 = std::min(view.grid - 1, int(std::ceil(std::max({a.x, b.x, c.x}) - 0.5f)));
+        const int x1 = std::min(grid - 1, int(std::ceil(std::max({a.x, b.x, c.x}) - 0.5f)));
         const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, c.y}) - 0.5f)));
-        const int y1 = std::min(view.grid - 1, int(std::ceil(std::max({a.y, b.y, c.y}) - 0.5f)));
+        const int y1 = std::min(grid - 1, int(std::ceil(std::max({a.y, b.y, c.y}) - 0.5f)));
         for (int y = y0; y <= y1; ++y)
             for (int x = x0; x <= x1; ++x) {
-                uint8_t& cell = covered[size_t(y) * view.grid + size_t(x)];
+                uint8_t& cell = covered[size_t(y) * grid + size_t(x)];
                 if (cell)
                     continue;
                 const glm::vec2 q(float(x) + 0.5f, float(y) + 0.5f);
@@ -350,7 +366,7 @@ size_t rasterisedCoverage(const FarSurface& surface, const CalibrationView& view
     size_t count = 0;
     for (uint8_t cell : covered)
         count += cell;
-    return count;
+    return double(count) / double(sub * sub);
 }
 
 // A splat of the view: its pixel (the square's corner as far_splat.comp places it) and footprint.
@@ -391,12 +407,9 @@ double splatCoverage(const std::vector<CalibrationSplat>& splats, const Calibrat
 
 } // namespace
 
-std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains(const FarSurface& surface,
-                                                                                 const FarSamples& far) {
-    std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> gains;
-    gains.fill(1.0f);
+float farCoverageGainAt(const FarSurface& surface, const FarSamples& far, float size, float elevationUnits) {
     if (far.samples.empty() || !(far.area > 0.0f))
-        return gains;
+        return 1.0f;
     float reach = 0.0f; // the surface's farthest point from the clump's origin
     for (const glm::vec3& p : surface.positions)
         reach = std::max(reach, glm::length(p));
@@ -409,81 +422,87 @@ std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains
     constexpr int kViewsPerCell = 4;
     constexpr int kAzimuths = int(gpu::kFarVisibilityAzimuths) * kViewsPerCell;
     constexpr float kPi = 3.14159265358979f;
-    const float side = std::sqrt(far.area);
-    for (uint32_t si = 0; si < gpu::kFarGainSizes; ++si) {
-        const float size = gpu::kFarGainFirstSize * float(1u << si);
-        const float pixelsPerMetre = size / side;
-        const uint32_t count =
-            gpu::farSampleCount(far.area, pixelsPerMetre, gpu::kFarDefaultDensity, uint32_t(far.samples.size()));
-        const float areaPerSample = far.area / float(count);
-        const int grid = int(std::ceil(2.0f * reach * pixelsPerMetre)) + 12;
-        for (uint32_t ei = 0; ei < gpu::kFarGainElevations; ++ei) {
-            const float elevation = float(ei) * (0.5f * kPi / float(gpu::kFarGainElevations - 1));
-            double truth = 0.0;
-            std::vector<std::pair<CalibrationView, std::vector<CalibrationSplat>>> views;
-            for (int a = 0; a < kAzimuths; ++a) {
-                // The eye's azimuth in farEyeAzimuth's units (cells, from view 0's centre), and in
-                // radians about +y as CalibrationView takes it. The first view sits a 64th of a
-                // cell past view 0's centre; any even spacing would do.
-                const float eyeAzimuth = (float(a) + 0.0625f) / float(kViewsPerCell);
-                const float azimuth = (eyeAzimuth + 0.5f) * (2.0f * kPi / float(gpu::kFarVisibilityAzimuths));
-                // Sub-pixel offsets from the plastic sequence, so the views sample the pixel grid evenly.
-                const glm::vec2 offset(std::fmod(0.5f + 0.7548776662f * float(a + 1), 1.0f),
-                                       std::fmod(0.5f + 0.5698402910f * float(a + 1), 1.0f));
-                const CalibrationView view{std::cos(azimuth),
-                                           std::sin(azimuth),
-                                           std::cos(elevation),
-                                           std::sin(elevation),
-                                           pixelsPerMetre,
-                                           offset,
-                                           grid};
-                truth += double(rasterisedCoverage(surface, view));
-                std::vector<CalibrationSplat> splats;
-                splats.reserve(count);
-                // Each view draws its own run of the shuffled samples, as far instances do
-                // (farSampleSlot), from starts spread evenly over the list: the gain fits the runs'
-                // average, not one prefix.
-                const uint32_t available = uint32_t(far.samples.size());
-                const uint32_t start = uint32_t(uint64_t(a) * available / kAzimuths);
-                for (uint32_t k = 0; k < count; ++k) {
-                    const FarSample& sample = far.samples[gpu::farSampleSlot(start, k, available)];
-                    const uint32_t bit = gpu::farVisibilityBitAt(
-                        eyeAzimuth, float(ei), gpu::farSampleRandom(uint32_t(a), k + gpu::kFarAzimuthStream),
-                        gpu::farSampleRandom(uint32_t(a), k + gpu::kFarElevationStream));
-                    if (!(sample.visibility >> bit & 1u))
-                        continue; // hidden by its own clump from this view: the splat pass skips it
-                    const glm::vec3 normal = unpackOctahedral(sample.normal);
-                    const float cosine = view.turn(normal).z; // towards the eye: +z of the view
-                    if (cosine < 0.0f && surface.closed)
-                        continue;
-                    const glm::vec2 at = view.pixel(sample.position);
-                    splats.push_back({int(std::floor(at.x)), int(std::floor(at.y)),
-                                      gpu::farSampleFootprint(areaPerSample, pixelsPerMetre, cosine),
-                                      view.turn(sample.position).z});
-                }
-                views.emplace_back(view, std::move(splats));
-            }
-            std::vector<double> logMiss(size_t(grid) * size_t(grid));
-            std::vector<uint8_t> certain(logMiss.size());
-            auto coverage = [&](float gain) {
-                double sum = 0.0;
-                for (const auto& [view, splats] : views)
-                    sum += splatCoverage(splats, view, gain, logMiss, certain);
-                return sum;
-            };
-            // Bisection in log2(gain) over [-2, 3]: coverage grows with the gain.
-            float lo = -2.0f, hi = 3.0f;
-            if (coverage(std::exp2(lo)) >= truth)
-                hi = lo;
-            else if (coverage(std::exp2(hi)) <= truth)
-                lo = hi;
-            for (int step = 0; step < 24 && hi - lo > 1e-4f; ++step) {
-                const float mid = 0.5f * (lo + hi);
-                (coverage(std::exp2(mid)) < truth ? lo : hi) = mid;
-            }
-            gains[si * gpu::kFarGainElevations + ei] = std::exp2(0.5f * (lo + hi));
+    const float pixelsPerMetre = size / std::sqrt(far.area);
+    const uint32_t count =
+        gpu::farSampleCount(far.area, pixelsPerMetre, gpu::kFarDefaultDensity, uint32_t(far.samples.size()));
+    const float areaPerSample = far.area / float(count);
+    const int grid = int(std::ceil(2.0f * reach * pixelsPerMetre)) + 12;
+    // LOD 0's points per pixel side (rasterisedCoverage): 16 at 2 px, 1 from 32 px on, so that
+    // every size's truth is counted over about as many points as a clump 32 px across.
+    const int sub = std::max(1, int(std::ceil(32.0f / size)));
+    const float elevation = elevationUnits * (0.5f * kPi / float(gpu::kFarGainElevations - 1));
+    double truth = 0.0;
+    std::vector<std::pair<CalibrationView, std::vector<CalibrationSplat>>> views;
+    for (int a = 0; a < kAzimuths; ++a) {
+        // The eye's azimuth in farEyeAzimuth's units (cells, from view 0's centre), and in radians
+        // about +y as CalibrationView takes it. The first view sits a 64th of a cell past view 0's
+        // centre; any even spacing would do.
+        const float eyeAzimuth = (float(a) + 0.0625f) / float(kViewsPerCell);
+        const float azimuth = (eyeAzimuth + 0.5f) * (2.0f * kPi / float(gpu::kFarVisibilityAzimuths));
+        // Sub-pixel offsets from the plastic sequence, so the views sample the pixel grid evenly.
+        const glm::vec2 offset(std::fmod(0.5f + 0.7548776662f * float(a + 1), 1.0f),
+                               std::fmod(0.5f + 0.5698402910f * float(a + 1), 1.0f));
+        const CalibrationView view{std::cos(azimuth),
+                                   std::sin(azimuth),
+                                   std::cos(elevation),
+                                   std::sin(elevation),
+                                   pixelsPerMetre,
+                                   offset,
+                                   grid};
+        truth += rasterisedCoverage(surface, view, sub);
+        std::vector<CalibrationSplat> splats;
+        splats.reserve(count);
+        // Each view draws its own run of the shuffled samples, as far instances do
+        // (farSampleSlot), from starts spread evenly over the list: the gain fits the runs'
+        // average, not one prefix.
+        const uint32_t available = uint32_t(far.samples.size());
+        const uint32_t start = uint32_t(uint64_t(a) * available / kAzimuths);
+        for (uint32_t k = 0; k < count; ++k) {
+            const FarSample& sample = far.samples[gpu::farSampleSlot(start, k, available)];
+            const uint32_t bit = gpu::farVisibilityBitAt(
+                eyeAzimuth, elevationUnits, gpu::farSampleRandom(uint32_t(a), k + gpu::kFarAzimuthStream),
+                gpu::farSampleRandom(uint32_t(a), k + gpu::kFarElevationStream));
+            if (!(sample.visibility >> bit & 1u))
+                continue; // hidden by its own clump from this view: the splat pass skips it
+            const glm::vec3 normal = unpackOctahedral(sample.normal);
+            const float cosine = view.turn(normal).z; // towards the eye: +z of the view
+            if (cosine < 0.0f && surface.closed)
+                continue;
+            const glm::vec2 at = view.pixel(sample.position);
+            splats.push_back({int(std::floor(at.x)), int(std::floor(at.y)),
+                              gpu::farSampleFootprint(areaPerSample, pixelsPerMetre, cosine),
+                              view.turn(sample.position).z});
         }
+        views.emplace_back(view, std::move(splats));
     }
+    std::vector<double> logMiss(size_t(grid) * size_t(grid));
+    std::vector<uint8_t> certain(logMiss.size());
+    auto coverage = [&](float gain) {
+        double sum = 0.0;
+        for (const auto& [view, splats] : views)
+            sum += splatCoverage(splats, view, gain, logMiss, certain);
+        return sum;
+    };
+    // Bisection in log2(gain) over [-2, 3]: coverage grows with the gain.
+    float lo = -2.0f, hi = 3.0f;
+    if (coverage(std::exp2(lo)) >= truth)
+        hi = lo;
+    else if (coverage(std::exp2(hi)) <= truth)
+        lo = hi;
+    for (int step = 0; step < 24 && hi - lo > 1e-4f; ++step) {
+        const float mid = 0.5f * (lo + hi);
+        (coverage(std::exp2(mid)) < truth ? lo : hi) = mid;
+    }
+    return std::exp2(0.5f * (lo + hi));
+}
+
+std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains(const FarSurface& surface,
+                                                                                 const FarSamples& far) {
+    std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> gains;
+    for (uint32_t si = 0; si < gpu::kFarGainSizes; ++si)
+        for (uint32_t ei = 0; ei < gpu::kFarGainElevations; ++ei)
+            gains[si * gpu::kFarGainElevations + ei] =
+                farCoverageGainAt(surface, far, gpu::kFarGainFirstSize * float(1u << si), float(ei));
     return gains;
 }
 

@@ -47,8 +47,9 @@ FarSamples buildFarSamples(const FarSurface& surface, uint32_t count, uint64_t s
 // The coverage gains of far.gain (far_splat.h), measured: per size and elevation bin, the surface
 // is seen from 32 azimuths, four to each visibility view's cell (each with its own sub-pixel
 // offset), orthographically at that size (pixels per metre = size / sqrt(far.area)), and
-//   - LOD 0 is rasterised as the mesh pass would: a pixel is covered where its centre falls in a
-//     triangle whose texel there (nearest, mip 0) has alpha >= 128;
+//   - LOD 0 is rasterised as the mesh pass would, a point is covered where it falls in a triangle
+//     whose texel there (nearest, mip 0) has alpha >= 128, at ceil(32 / size) x ceil(32 / size)
+//     points per pixel: the pixels it covers on average over where the pixel grid falls;
 //   - farSampleCount(...) samples at kFarDefaultDensity, each view a run of them from its own start
 //     (a / 32 of the way through the shuffled list; farSampleSlot), those in sight by the bit the
 //     splat pass would take there (farVisibilityBitAt), are splatted as the splat pass does
@@ -58,6 +59,11 @@ FarSamples buildFarSamples(const FarSurface& surface, uint32_t count, uint64_t s
 // 0's over the 32 views (bisection on the monotone coverage).
 std::array<float, gpu::kFarGainSizes * gpu::kFarGainElevations> farCoverageGains(const FarSurface& surface,
                                                                                  const FarSamples& far);
+
+// One cell of that measurement: the gain at `size` px and an eye elevation of `elevationUnits`
+// (30 degree units, farEyeElevation's: 0 to kFarGainElevations - 1), also between the table's bins
+// (a probe of its interpolation); farCoverageGains holds it at the bins. 1 for no samples.
+float farCoverageGainAt(const FarSurface& surface, const FarSamples& far, float size, float elevationUnits);
 
 // The seed of clump `index` (or of rock `index`) of a scene.
 uint64_t farSampleSeed(uint64_t sceneSeed, uint32_t index, bool rock);

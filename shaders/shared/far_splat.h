@@ -211,7 +211,7 @@ MEADOW_FAR_FN float farDensityShare(float surface) {
 
 // How many of a clump's `available` shuffled samples a far instance draws: `density` samples per
 // pixel of its surface's projected area, tapered for larger instances (farDensityShare). `area` is
-// the surface (m^2, one side) and `pixelsPerMetre` the focal length in pixels over the distance; a
+// the surface (m^2, one side) and `pixelsPerMetre` farPixelsPerMetre at its sphere's centre; a
 // sheet seen at a random angle shows half its area on average. At least 1, at most `available`.
 MEADOW_FAR_FN uint farSampleCount(float area, float pixelsPerMetre, float density, uint available) {
     MEADOW_FAR_PRECISE float surface = area * (pixelsPerMetre * pixelsPerMetre);
@@ -219,8 +219,25 @@ MEADOW_FAR_FN uint farSampleCount(float area, float pixelsPerMetre, float densit
     return uint(farMax(1.0f, farMin(n, float(available))));
 }
 
+// The pixels per metre at a point `depth` (clip w) in front of the eye and `eyeDistance` from it:
+// the square root of the pixels that a small patch of one square metre, facing the eye, covers
+// there; `pixelsPerUnit` is GpuFrame::lodScreen.x, the pixels per unit of length at unit depth. On
+// the optical axis that is pixelsPerUnit / depth. Off the axis the patch covers more: its solid
+// angle falls as 1 / eyeDistance^2, but the image plane, met obliquely, takes 1 / cos^3 more pixels
+// per steradian at an angle off the axis whose cosine is depth / eyeDistance. So a square metre
+// covers pixelsPerUnit^2 eyeDistance / depth^3 pixels: at the corners of a 16:9 view 50 degrees
+// high, 1.38 times what pixelsPerUnit / depth gives. The coverage gains are measured in
+// orthographic views, where the two agree. Taken as pixelsPerUnit / depth (or / eyeDistance), the
+// splats off the axis came out as many times too small as LOD 0 is drawn larger there, and the far
+// field covered 5-10 % less than its reference (docs/BENCHMARKS.md, "The far field's footprints
+// off the optical axis").
+MEADOW_FAR_FN float farPixelsPerMetre(float pixelsPerUnit, float depth, float eyeDistance) {
+    MEADOW_FAR_PRECISE float ppm = pixelsPerUnit / depth * farSqrt(eyeDistance / depth);
+    return ppm;
+}
 // A sample's share of the screen: its share of the surface, `areaPerSample` (m^2), seen at
-// `pixelsPerMetre` and turned by `cosine` (its normal against the view direction), in pixels.
+// `pixelsPerMetre` (farPixelsPerMetre) and turned by `cosine` (its normal against the direction to
+// the eye), in pixels.
 // Below one pixel the sample covers its pixel with that probability (stochastic coverage: a thin
 // leaf seen edge-on lights few pixels, as it covers little of them); above, a square of about that
 // area: `farSplatSide`.
@@ -351,9 +368,9 @@ MEADOW_FAR_FN uint farVisibilityBitAt(float azimuth, float elevation, float r1, 
 }
 
 // An instance's size for its coverage gain: the square root of its surface (`area`, m²) in pixels
-// at its base's depth (`baseW`, clip w), `pixelsPerUnit` pixels per unit of length at unit depth.
-MEADOW_FAR_FN float farInstanceSize(float area, float pixelsPerUnit, float baseW) {
-    return farSqrt(area) * pixelsPerUnit / baseW;
+// at its base, `pixelsPerMetre` there (farPixelsPerMetre).
+MEADOW_FAR_FN float farInstanceSize(float area, float pixelsPerMetre) {
+    return farSqrt(area) * pixelsPerMetre;
 }
 
 // An instance's coverage gain: its clump's table (GpuClump::farGain) at its size (`size`, the

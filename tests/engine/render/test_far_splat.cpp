@@ -3,7 +3,9 @@
 // the LOD coordinate (lod_select.h).
 #include "far_splat.h"
 #include "lod_select.h"
+#include "render/camera.h"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -285,12 +287,63 @@ TEST(FarSplat, VisibilityViewFollowsTheEyesDirection) {
 
 // The coverage gain's table (far_splat.h): exact at its bins, linear between them in log2 of the
 // size and in the elevation's 30-degree units, clamped at both ends.
-// The size the gain table is looked up at: the square root of the surface, in pixels at the base's
-// depth (4 m² is 2 m across; at 100 px per unit at unit depth and depth 10, 20 px).
+// The size the gain table is looked up at: the square root of the surface, in pixels at the base
+// (4 m² is 2 m across; at 10 px per metre, 20 px).
 TEST(FarSplat, InstanceSizeIsItsSurfacesSideInPixels) {
-    EXPECT_FLOAT_EQ(farInstanceSize(4.0f, 100.0f, 10.0f), 20.0f);
-    EXPECT_FLOAT_EQ(farInstanceSize(4.0f, 100.0f, 20.0f), 10.0f);
-    EXPECT_FLOAT_EQ(farInstanceSize(16.0f, 100.0f, 20.0f), 20.0f);
+    EXPECT_FLOAT_EQ(farInstanceSize(4.0f, 10.0f), 20.0f);
+    EXPECT_FLOAT_EQ(farInstanceSize(4.0f, 5.0f), 10.0f);
+    EXPECT_FLOAT_EQ(farInstanceSize(16.0f, 5.0f), 20.0f);
+    // On the optical axis (distance = depth), pixelsPerUnit / depth.
+    EXPECT_FLOAT_EQ(farPixelsPerMetre(100.0f, 10.0f, 10.0f), 10.0f);
+    EXPECT_FLOAT_EQ(farPixelsPerMetre(100.0f, 10.0f, 40.0f), 20.0f);
+}
+
+// farPixelsPerMetre against the projection itself: a small square facing the eye, anywhere in a
+// 16:9 view 50 degrees high, covers farPixelsPerMetre^2 times its area in pixels (to the square's
+// own perspective, well under 0.1 %), and off the axis clearly more than pixelsPerUnit / depth
+// gives (38 % at the corners), the splats' footprints and counts follow that (far_splat.h).
+TEST(FarSplat, PixelsPerMetreMatchTheProjectionAcrossTheView) {
+    meadow::Camera camera;
+    camera.eye = glm::vec3(3.0f, 7.0f, -11.0f);
+    camera.target = glm::vec3(-2.0f, 0.5f, 6.0f);
+    camera.fovYDegrees = 50.0f;
+    const uint width = 1280, height = 720;
+    const GpuFrame frame = meadow::makeCameraUniforms(camera, width, height, 1);
+    const glm::mat4 view = meadow::viewMatrix(camera);
+    const glm::mat3 toWorld = glm::transpose(glm::mat3(view)); // the view's axes in world space
+    // In double precision: the squares cover a few pixels, far from the image's origin.
+    const glm::dmat4 viewProj(frame.viewProj);
+    const auto pixel = [&](glm::dvec3 p) {
+        const glm::dvec4 clip = viewProj * glm::dvec4(p, 1.0);
+        return (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * glm::dvec2(double(width), double(height));
+    };
+    const float tanY = std::tan(glm::radians(25.0f)), tanX = tanY * 16.0f / 9.0f;
+    float largestExcess = 0.0f;
+    for (float sx : {-0.98f, -0.5f, 0.0f, 0.3f, 0.98f})
+        for (float sy : {-0.98f, 0.0f, 0.6f, 0.98f})
+            for (float depth : {12.0f, 45.0f}) {
+                // A point at (sx, sy) of the view's half-extents, `depth` in front of the eye.
+                const glm::vec3 p = camera.eye + toWorld * glm::vec3(sx * tanX * depth, sy * tanY * depth, -depth);
+                const glm::vec3 toEye = camera.eye - p;
+                const float eyeDistance = glm::length(toEye);
+                const glm::vec3 n = toEye / eyeDistance;
+                const glm::vec3 u = glm::normalize(glm::cross(n, glm::vec3(0.0f, 1.0f, 0.0f)));
+                const glm::vec3 v = glm::cross(n, u);
+                const double h = 1e-3 * double(depth); // m: about a pixel at either depth
+                const glm::dvec3 q(p), du = h * glm::dvec3(u), dv = h * glm::dvec3(v);
+                const glm::dvec2 a = pixel(q - du - dv), b = pixel(q + du - dv), c = pixel(q + du + dv),
+                                 d = pixel(q - du + dv);
+                const float pixels = float(0.5 * std::abs((a.x * b.y - b.x * a.y) + (b.x * c.y - c.x * b.y) +
+                                                          (c.x * d.y - d.x * c.y) + (d.x * a.y - a.x * d.y)));
+                const float square = float(4.0 * h * h);
+                const float clipW = (frame.viewProj * glm::vec4(p, 1.0f)).w;
+                EXPECT_NEAR(clipW, depth, 1e-3f * depth);
+                const float ppm = farPixelsPerMetre(frame.lodScreen.x, clipW, eyeDistance);
+                EXPECT_NEAR(pixels / (square * ppm * ppm), 1.0f, 1e-3f) << sx << " " << sy << " " << depth;
+                const float onAxis = frame.lodScreen.x / clipW;
+                largestExcess = std::max(largestExcess, pixels / (square * onAxis * onAxis));
+            }
+    EXPECT_GT(largestExcess, 1.3f);
 }
 
 TEST(FarSplat, CoverageGainInterpolatesItsTable) {

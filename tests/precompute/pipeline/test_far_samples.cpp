@@ -551,6 +551,28 @@ TEST(FarSamples, CoverageGainRestoresSolidSurfacesAndLeavesThinBladesAlone) {
         }
 }
 
+// LOD 0's coverage is measured as the field meets it on average, wherever the pixel grid falls
+// (rasterisedCoverage's points per pixel), not as the calibration views' own pixel centres happen
+// to meet it. Upright blades narrower than a pixel each cover a whole column of centres or none,
+// and which of twelve do in 32 views is chance: counted at the centres, their gains came out
+// 0.64-0.65 at 8 px and 0.84-0.86 at 16 px; over the pixel, 0.92-1.13 from 2 to 16 px, about none
+// as for the leaning ones above.
+TEST(FarSamples, CoverageGainsMeasureLod0WhereverThePixelGridFalls) {
+    std::vector<std::array<glm::vec3, 3>> spans;
+    for (int i = 0; i < 12; ++i) {
+        const float a = float(i) * 0.5236f;
+        const glm::vec3 at(0.3f * std::cos(a), 0.0f, 0.3f * std::sin(a));
+        const glm::vec3 across(0.004f * std::cos(2.0f * a), 0.0f, 0.004f * std::sin(2.0f * a));
+        spans.push_back({at, across, {0.0f, 0.8f, 0.0f}});
+    }
+    const FarSamples blades = measured(quads(spans));
+    for (uint32_t size = 0; size < 4; ++size) // 2 to 16 px
+        for (uint32_t elevation = 0; elevation < 3; ++elevation) {
+            EXPECT_GT(gainAt(blades, size, elevation), 0.8f) << size << " " << elevation;
+            EXPECT_LT(gainAt(blades, size, elevation), 1.25f) << size << " " << elevation;
+        }
+}
+
 // The resolve pass tests samples against the meshes' depth, which holds the ground, as far as the
 // ground reaches within the pixel: half a pixel's change of its depth behind the pixel's centre
 // (far_splat.h, farMeshDepthLimit). The gains count the ground as that test does: a sheet lying
@@ -564,6 +586,29 @@ TEST(FarSamples, CoverageGainCountsTheGroundAsTheResolveTestsIt) {
         const float ratio = gainAt(lying, size, 1) / gainAt(raised, size, 1);
         EXPECT_GT(ratio, 0.95f) << size;
         EXPECT_LT(ratio, 1.05f) << size;
+    }
+}
+
+// The level view is the limit of the views just above it: the ground hides the rows wholly below
+// its line, not the row it crosses, whose ground reaches back to the base as the resolve pass's
+// test gives for any eye above level (far_samples.cpp, CalibrationView::groundHides). The splat pass
+// interpolates the gains from 0 degrees up to 30, and the field's eye is never quite level: with
+// the row the line crosses hidden as well, a rock's gains at 0 degrees came out 1.6 times those a
+// degree higher at 2 px, and the far field's rocks near the horizon covered 5-7 % too much.
+TEST(FarSamples, CoverageGainSeenLevelIsTheLimitOfTheViewsAboveIt) {
+    // A closed cube 0.6 m on a side standing on the ground, its faces outward.
+    const FarSurface cube = quads({{glm::vec3(-0.3f, 0.0f, -0.3f), {0.6f, 0, 0}, {0, 0, 0.6f}},
+                                   {glm::vec3(-0.3f, 0.6f, -0.3f), {0, 0, 0.6f}, {0.6f, 0, 0}},
+                                   {glm::vec3(-0.3f, 0.0f, 0.3f), {0.6f, 0, 0}, {0, 0.6f, 0}},
+                                   {glm::vec3(-0.3f, 0.0f, -0.3f), {0, 0.6f, 0}, {0.6f, 0, 0}},
+                                   {glm::vec3(0.3f, 0.0f, -0.3f), {0, 0.6f, 0}, {0, 0, 0.6f}},
+                                   {glm::vec3(-0.3f, 0.0f, -0.3f), {0, 0, 0.6f}, {0, 0.6f, 0}}},
+                                  true);
+    const FarSamples far = buildFarSamples(cube, 4096, 7);
+    for (float size : {2.0f, 4.0f, 8.0f}) {
+        const float level = farCoverageGainAt(cube, far, size, 0.0f);
+        const float degree = farCoverageGainAt(cube, far, size, 1.0f / 30.0f);
+        EXPECT_NEAR(level / degree, 1.0f, 0.05f) << size << " px: " << level << " level, " << degree << " at 1 degree";
     }
 }
 
