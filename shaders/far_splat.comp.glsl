@@ -129,11 +129,10 @@ void main() {
         // simulated motion, the modes replay it to within their error), and the distance to the
         // eye at most the centre's plus as much; then a sample's footprint (farSampleFootprint and
         // farPixelsPerMetre, |cosine| at most 1) is at most coinBound, and one whose random number
-        // is at least coinBound loses
-        // the coin below. Such samples are passed over in the search, before their motion and light
-        // are computed (docs/BENCHMARKS.md, "The coverage coin tossed in the search"). The same
-        // samples win as without it; without a bound (the sphere reaching the eye's plane) none is
-        // passed over.
+        // is at least coinBound loses the coin below. Such samples are passed over in the search,
+        // before their motion and light are computed (docs/BENCHMARKS.md, "The coverage coin tossed
+        // in the search"). The same samples win as without it; without a bound (the sphere reaching
+        // the eye's plane) none is passed over.
         float radius = instances[instance].boundingRadius * scale;
         vec3 wRow = vec3(frame.viewProj[0][3], frame.viewProj[1][3], frame.viewProj[2][3]);
         vec3 centre = inst.positionScale.xyz + vec3(0.0, 0.5 * radius, 0.0);
