@@ -327,8 +327,8 @@ struct CalibrationView {
 // is that integral over the pixel, not the count of the calibration views' own pixel centres: for a
 // clump a few pixels across, those were a few dozen over all 32 views, and which leaves met a
 // centre was chance; the gains came out jagged in size (0.79 to 1.12 between 2 and 4 px) and,
-// interpolated between the table's bins, the far field covered up to 22 % too much or too little
-// there (docs/BENCHMARKS.md, "The far field's footprints off the optical axis").
+// interpolated between the table's bins, a lone clump's splats covered up to 22 % too much or too
+// little there (docs/BENCHMARKS.md, "The far field's footprints off the optical axis").
 double rasterisedCoverage(const FarSurface& surface, const CalibrationView& view, int sub) {
     const int grid = view.grid * sub;
     const float scale = float(sub);
