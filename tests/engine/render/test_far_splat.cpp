@@ -5,7 +5,6 @@
 #include "lod_select.h"
 #include "render/camera.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -285,8 +284,6 @@ TEST(FarSplat, VisibilityViewFollowsTheEyesDirection) {
     EXPECT_EQ(farVisibilityBitTowards(-std::sin(wrap), 0.0f, std::cos(wrap), 0.8f, 0.0f), 7u);
 }
 
-// The coverage gain's table (far_splat.h): exact at its bins, linear between them in log2 of the
-// size and in the elevation's 30-degree units, clamped at both ends.
 // The size the gain table is looked up at: the square root of the surface, in pixels at the base
 // (4 m² is 2 m across; at 10 px per metre, 20 px).
 TEST(FarSplat, InstanceSizeIsItsSurfacesSideInPixels) {
@@ -346,6 +343,8 @@ TEST(FarSplat, PixelsPerMetreMatchTheProjectionAcrossTheView) {
     EXPECT_GT(largestExcess, 1.3f);
 }
 
+// The coverage gain's table (far_splat.h): exact at its bins, linear between them in log2 of the
+// size and in the elevation's 30-degree units, clamped at both ends.
 TEST(FarSplat, CoverageGainInterpolatesItsTable) {
     GpuClump clump{};
     for (uint size = 0; size < kFarGainSizes; ++size)
