@@ -21,7 +21,10 @@
 //   - SSIM of the luma (Wang et al. 2004, 7x7 windows, sRGB-encoded values), averaged over the
 //     windows centred in the region; fails below S, and, with --reference REF (another
 //     approximation, the LOD meshes), below SSIM(REF, TRUTH) - M.
-// Prints one line of figures; exit 1 on failure, 2 on bad use.
+// Prints one line of figures, the mean colour's error taken apart too: the signed error per channel
+// as the sum of its parts over the pixels that are plant in both images, in the approximation only,
+// in the truth only, and the rest (so that a difference in the plants' colour can be told from one
+// in where they cover). Exit 1 on failure, 2 on bad use.
 #include <OpenImageIO/imagebuf.h>
 
 #include <algorithm>
@@ -255,9 +258,12 @@ int main(int argc, char** argv) {
     size_t regionPixels = 0;
     double meanTruth[3] = {0, 0, 0}, meanApprox[3] = {0, 0, 0};
     double plantTruth = 0.0, plantApprox = 0.0;
-    // Over the pixels that are plant in both: the colour of the plants alone, without coverage.
-    double bothTruth[3] = {0, 0, 0}, bothApprox[3] = {0, 0, 0};
-    size_t bothPixels = 0;
+    // The region's pixels in four parts: plant in both images (their colour is the plants' alone,
+    // without coverage), plant in the approximation only, in the truth only, and the rest (neither,
+    // or a supersampled truth's block part plant). Each part's share of the mean colour's error.
+    enum Part { kBoth, kApproxOnly, kTruthOnly, kRest, kParts };
+    double partTruth[kParts][3] = {}, partApprox[kParts][3] = {};
+    size_t partPixels[kParts] = {};
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             if (!region[size_t(y) * w + x])
@@ -269,12 +275,15 @@ int main(int argc, char** argv) {
             }
             plantTruth += truthPlant[size_t(y) * w + x];
             plantApprox += approxPlant[size_t(y) * w + x];
-            if (truthPlant[size_t(y) * w + x] == 1.0f && approxPlant[size_t(y) * w + x] == 1.0f) {
-                ++bothPixels;
-                for (int c = 0; c < 3; ++c) {
-                    bothTruth[c] += linear(truth.at(x, y, c));
-                    bothApprox[c] += linear(approx.at(x, y, c));
-                }
+            const float inTruth = truthPlant[size_t(y) * w + x], inApprox = approxPlant[size_t(y) * w + x];
+            const Part part = inTruth == 1.0f && inApprox == 1.0f   ? kBoth
+                              : inTruth == 0.0f && inApprox == 1.0f ? kApproxOnly
+                              : inTruth == 1.0f && inApprox == 0.0f ? kTruthOnly
+                                                                    : kRest;
+            ++partPixels[part];
+            for (int c = 0; c < 3; ++c) {
+                partTruth[part][c] += linear(truth.at(x, y, c));
+                partApprox[part][c] += linear(approx.at(x, y, c));
             }
         }
     if (shownPixels < 50) {
@@ -310,13 +319,27 @@ int main(int argc, char** argv) {
                 coverageRatio, coverageLow, coverageHigh, s);
     if (referencePath)
         std::printf(" (reference %.3f)", sReference);
-    if (bothPixels > 0) {
-        std::printf("; where both show plants (%zu px) truth %.4f %.4f %.4f, approximation %.4f %.4f %.4f", bothPixels,
-                    bothTruth[0] / double(bothPixels), bothTruth[1] / double(bothPixels),
-                    bothTruth[2] / double(bothPixels), bothApprox[0] / double(bothPixels),
-                    bothApprox[1] / double(bothPixels), bothApprox[2] / double(bothPixels));
+    std::printf(", allowed from %.3f", std::max(minSsim, referencePath ? sReference - margin : 0.0));
+    if (partPixels[kBoth] > 0) {
+        const size_t n = partPixels[kBoth];
+        std::printf("; where both show plants (%zu px) truth %.4f %.4f %.4f, approximation %.4f %.4f %.4f", n,
+                    partTruth[kBoth][0] / double(n), partTruth[kBoth][1] / double(n), partTruth[kBoth][2] / double(n),
+                    partApprox[kBoth][0] / double(n), partApprox[kBoth][1] / double(n),
+                    partApprox[kBoth][2] / double(n));
     }
-    std::printf(", allowed from %.3f\n", std::max(minSsim, referencePath ? sReference - margin : 0.0));
+    // The mean colour's signed error per channel, relative to the truth's mean, as the sum of the
+    // parts' (approximation less truth, summed over the part, over the truth's sum): where it comes
+    // from, plant colour or coverage.
+    std::printf("; the error's parts, R G B in %% of the truth's mean:");
+    const char* partNames[kParts] = {"plant in both", "plant in the approximation only", "plant in the truth only",
+                                     "the rest"};
+    for (int part = 0; part < kParts; ++part) {
+        std::printf("%s %s (%zu px)", part ? "," : "", partNames[part], partPixels[part]);
+        for (int c = 0; c < 3; ++c)
+            std::printf(" %+.2f", 100.0 * (partApprox[part][c] - partTruth[part][c]) /
+                                      std::max(meanTruth[c] * double(regionPixels), 1e-9));
+    }
+    std::printf("\n");
     bool ok = colourError <= maxColour && coverageRatio >= coverageLow && coverageRatio <= coverageHigh && s >= minSsim;
     if (referencePath)
         ok = ok && s >= sReference - margin;
