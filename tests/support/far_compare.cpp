@@ -255,12 +255,11 @@ int main(int argc, char** argv) {
                     inRegion = showsLodColour(truthLod, k * x + dx, k * y + dy, firstLod, lastLod);
             region[size_t(y) * w + x] = inRegion;
         }
-    size_t regionPixels = 0;
-    double meanTruth[3] = {0, 0, 0}, meanApprox[3] = {0, 0, 0};
     double plantTruth = 0.0, plantApprox = 0.0;
     // The region's pixels in four parts: plant in both images (their colour is the plants' alone,
     // without coverage), plant in the approximation only, in the truth only, and the rest (neither,
-    // or a supersampled truth's block part plant). Each part's share of the mean colour's error.
+    // or a supersampled truth's block part plant). The region's sums are the parts' summed; each
+    // part's share of the mean colour's error is printed.
     enum Part { kBoth, kApproxOnly, kTruthOnly, kRest, kParts };
     double partTruth[kParts][3] = {}, partApprox[kParts][3] = {};
     size_t partPixels[kParts] = {};
@@ -268,11 +267,6 @@ int main(int argc, char** argv) {
         for (int x = 0; x < w; ++x) {
             if (!region[size_t(y) * w + x])
                 continue;
-            ++regionPixels;
-            for (int c = 0; c < 3; ++c) {
-                meanTruth[c] += linear(truth.at(x, y, c));
-                meanApprox[c] += linear(approx.at(x, y, c));
-            }
             plantTruth += truthPlant[size_t(y) * w + x];
             plantApprox += approxPlant[size_t(y) * w + x];
             const float inTruth = truthPlant[size_t(y) * w + x], inApprox = approxPlant[size_t(y) * w + x];
@@ -286,6 +280,15 @@ int main(int argc, char** argv) {
                 partApprox[part][c] += linear(approx.at(x, y, c));
             }
         }
+    size_t regionPixels = 0;
+    double meanTruth[3] = {0, 0, 0}, meanApprox[3] = {0, 0, 0};
+    for (int part = 0; part < kParts; ++part) {
+        regionPixels += partPixels[part];
+        for (int c = 0; c < 3; ++c) {
+            meanTruth[c] += partTruth[part][c];
+            meanApprox[c] += partApprox[part][c];
+        }
+    }
     if (shownPixels < 50) {
         std::fprintf(stderr,
                      "far_compare: LODs %d to %d (5: the far field) cover %zu pixels of %s: too few to compare\n",
