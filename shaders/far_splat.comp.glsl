@@ -195,7 +195,7 @@ void main() {
                 continue;
             uint side = farSplatSide(footprint);
             vec2 pixel = (ndc.xy * 0.5 + 0.5) * vec2(size);
-            ivec2 corner = ivec2(floor(pixel)) - ivec2(int(side - 1u) / 2);
+            ivec2 corner = ivec2(farSplatCorner(pixel.x, side), farSplatCorner(pixel.y, side));
             if (corner.x >= size.x || corner.y >= size.y || corner.x + int(side) <= 0 || corner.y + int(side) <= 0)
                 continue;
 

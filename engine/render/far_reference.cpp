@@ -144,7 +144,8 @@ std::vector<uint64_t> farSplatReference(const FarSplatInputs& in) {
                 continue;
             const int side = int(gpu::farSplatSide(footprint));
             const glm::vec2 pixel = (glm::vec2(ndc) * 0.5f + 0.5f) * glm::vec2(float(width), float(height));
-            const glm::ivec2 corner = glm::ivec2(glm::floor(pixel)) - glm::ivec2((side - 1) / 2);
+            const glm::ivec2 corner(gpu::farSplatCorner(pixel.x, uint32_t(side)),
+                                    gpu::farSplatCorner(pixel.y, uint32_t(side)));
             if (corner.x >= width || corner.y >= height || corner.x + side <= 0 || corner.y + side <= 0)
                 continue;
 

@@ -369,9 +369,10 @@ double rasterisedCoverage(const FarSurface& surface, const CalibrationView& view
     return double(count) / double(sub * sub);
 }
 
-// A splat of the view: its pixel (the square's corner as far_splat.comp places it) and footprint.
+// A splat of the view: its continuous pixel coordinates (its square placed from them as
+// far_splat.comp places it, farSplatCorner) and footprint.
 struct CalibrationSplat {
-    int x, y;
+    glm::vec2 at;
     float footprint;
     float towardEye; // the sample's view coordinate towards the eye (CalibrationView::groundHides)
 };
@@ -386,7 +387,7 @@ double splatCoverage(const std::vector<CalibrationSplat>& splats, const Calibrat
         const float f = s.footprint * gain;
         const int side = int(gpu::farSplatSide(f));
         const float keep = std::min(f, 1.0f);
-        const int cx = s.x - (side - 1) / 2, cy = s.y - (side - 1) / 2;
+        const int cx = gpu::farSplatCorner(s.at.x, uint32_t(side)), cy = gpu::farSplatCorner(s.at.y, uint32_t(side));
         for (int j = 0; j < side; ++j)
             for (int i = 0; i < side; ++i) {
                 const int x = cx + i, y = cy + j;
@@ -469,9 +470,8 @@ float farCoverageGainAt(const FarSurface& surface, const FarSamples& far, float 
             if (cosine < 0.0f && surface.closed)
                 continue;
             const glm::vec2 at = view.pixel(sample.position);
-            splats.push_back({int(std::floor(at.x)), int(std::floor(at.y)),
-                              gpu::farSampleFootprint(areaPerSample, pixelsPerMetre, cosine),
-                              view.turn(sample.position).z});
+            splats.push_back(
+                {at, gpu::farSampleFootprint(areaPerSample, pixelsPerMetre, cosine), view.turn(sample.position).z});
         }
         views.emplace_back(view, std::move(splats));
     }

@@ -15,7 +15,7 @@ namespace meadow {
 namespace {
 
 // Bump when what precompute produces changes for the same inputs.
-constexpr uint32_t kPrecomputeVersion = 19;
+constexpr uint32_t kPrecomputeVersion = 20;
 
 std::string hex(uint64_t v) {
     char buf[17];

@@ -255,6 +255,16 @@ MEADOW_FAR_FN uint farSplatSide(float footprint) {
     return uint(farMin(side, float(kFarMaxSplatSide)));
 }
 
+// The first pixel (column or row) of the square of `side` pixels a sample at continuous pixel
+// coordinate `pixel` covers: the square whose centre is nearest the sample. The pixel holding the
+// sample, less (side - 1) / 2 in whole pixels, put a square of even side half a pixel past its
+// sample on average, right and down: a clump's splats of 2 x 2 and 4 x 4 pixels sat off its
+// surface's centre. Subtracting a half-integer from a pixel coordinate is exact, so C++ and GLSL
+// agree.
+MEADOW_FAR_FN int farSplatCorner(float pixel, uint side) {
+    return int(farFloor(pixel - 0.5f * float(side - 1u)));
+}
+
 // Coverage gain (docs/ARCHITECTURE.md, The far field). Samples that each cover their pixel with
 // the probability of their footprint, independently, cover a pixel that the surface fills with
 // probability 1 - exp(-d) (d the footprints summed there), not 1: a solid leaf or rock looks

@@ -201,6 +201,27 @@ TEST(FarSplat, FootprintFollowsAreaDistanceAndAngle) {
     EXPECT_EQ(farSplatSide(1e6f), kFarMaxSplatSide);
 }
 
+TEST(FarSplat, SquaresAreCentredOnTheirSample) {
+    // One pixel: the pixel holding the sample, negative coordinates included.
+    EXPECT_EQ(farSplatCorner(10.3f, 1u), 10);
+    EXPECT_EQ(farSplatCorner(-0.2f, 1u), -1);
+    // Even sides: the square whose centre is nearest the sample, whichever half of its pixel it is in.
+    EXPECT_EQ(farSplatCorner(10.3f, 2u), 9);  // covers 9..10, centre 10.0
+    EXPECT_EQ(farSplatCorner(10.7f, 2u), 10); // covers 10..11, centre 11.0
+    EXPECT_EQ(farSplatCorner(10.7f, 4u), 9);  // covers 9..12, centre 11.0
+    EXPECT_EQ(farSplatCorner(10.3f, 3u), 9);  // covers 9..11, centre 10.5
+    // Over every sub-pixel position, a square's centre lies on its sample on average.
+    for (uint side = 1u; side <= kFarMaxSplatSide; ++side) {
+        double offset = 0.0;
+        const int n = 1024;
+        for (int i = 0; i < n; ++i) {
+            const float pixel = 100.0f + (float(i) + 0.5f) / float(n);
+            offset += double(farSplatCorner(pixel, side)) + 0.5 * double(side) - double(pixel);
+        }
+        EXPECT_NEAR(offset / n, 0.0, 1e-3) << side;
+    }
+}
+
 TEST(FarSplat, CoverageRandomNumbersAreUniformAndFixed) {
     // The share of samples kept below a footprint f is f (stochastic coverage), whichever instance.
     for (uint instance : {0u, 7u, 123456u}) {
