@@ -56,6 +56,20 @@ NearVertex readVertex(uint slot) {
     return v;
 }
 
+// Past the end of its row's span (col > hi), on to the first of the next rows with a pixel inside;
+// at the triangle's last row, col stays past hi.
+void nearNextCoveredRow(NearTriangle tri, inout int row, inout int col, inout int hi, inout NearEdge e0,
+                        inout NearEdge e1, inout NearEdge e2) {
+    while (col > hi && row < tri.rowHi) {
+        ++row;
+        e0 = nearEdgeNextRow(e0);
+        e1 = nearEdgeNextRow(e1);
+        e2 = nearEdgeNextRow(e2);
+        col = nearSpanLow(e2, nearSpanLow(e1, nearSpanLow(e0, tri.colLo)));
+        hi = nearSpanHigh(e2, nearSpanHigh(e1, nearSpanHigh(e0, tri.colHi)));
+    }
+}
+
 void main() {
     uint total = nearDispatch.count;
     ivec2 size = ivec2(frame.lodScreen.zw);
@@ -101,42 +115,43 @@ void main() {
             // One loop over the covered pixels, row by row, rather than a loop over rows around a loop over
             // each row's span: a SIMD row of threads (lavapipe's, or a GPU's warp), each on its own
             // triangle, then runs the pixel's work about as often as its busiest thread has pixels,
-            // not as its longest span times its most rows.
+            // not as its longest span times its most rows. The loop tests for the next pixel at its
+            // end, after the pixel's work: llvmpipe runs all of a loop's body in each pass, whatever
+            // its lanes decide, so a loop that tests at its start (as `for (;;)` with a `break`
+            // ahead of the work) runs the pixel's work once more, for no lane, after the last pixel
+            // of every SIMD row's triangles: 8-9 % of the pass in the low view (docs/BENCHMARKS.md,
+            // "The near raster's loop tested at its end"). The same pixels, the same words.
             int row = tri.rowLo, col = nearSpanLow(e2, nearSpanLow(e1, nearSpanLow(e0, tri.colLo)));
             int hi = nearSpanHigh(e2, nearSpanHigh(e1, nearSpanHigh(e0, tri.colHi)));
-            for (;;) {
-                // On to the next row with a pixel inside.
-                while (col > hi && row < tri.rowHi) {
-                    ++row;
-                    e0 = nearEdgeNextRow(e0);
-                    e1 = nearEdgeNextRow(e1);
-                    e2 = nearEdgeNextRow(e2);
-                    col = nearSpanLow(e2, nearSpanLow(e1, nearSpanLow(e0, tri.colLo)));
-                    hi = nearSpanHigh(e2, nearSpanHigh(e1, nearSpanHigh(e0, tri.colHi)));
-                }
-                if (col > hi)
-                    break;
+            nearNextCoveredRow(tri, row, col, hi, e0, e1, e2);
+            do {
+                // A thread whose triangle covers no pixel passes once with nothing to draw.
+                bool inside = col <= hi;
                 uint px = uint(tri.originX + col), py = uint(tri.originY + row);
                 int at = col++;
-                if (fading && !lodDitherKeepsLevel(isFadeLod, ditherLevel, px, py))
-                    continue;
-                vec3 w = vec3(float(nearEdgeValue(e0, at)), float(nearEdgeValue(e1, at)), float(nearEdgeValue(e2, at))) *
-                         invArea;
-                vec3 pw = w * invW; // perspective-correct weights
-                pw /= pw.x + pw.y + pw.z;
-                vec3 uvFacing = pw.x * v0.uvFacing + pw.y * v1.uvFacing + pw.z * v2.uvFacing;
-                vec4 texel = albedo.w > 0.5 ? vec4(albedo.rgb, 1.0) : textureLod(atlas, uvFacing.xy, mip);
-                if (texel.a < 0.5)
-                    continue;
-                bool front = uvFacing.z >= 0.0;
-                vec3 light = front ? pw.x * v0.front + pw.y * v1.front + pw.z * v2.front
-                                   : pw.x * v0.back + pw.y * v1.back + pw.z * v2.back;
-                vec3 radiance = texel.rgb * light;
-                if (kLodView)
-                    radiance = kLodViewColors[min(lod, kLodFar)] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
-                uint64_t word = packUint2x32(uvec2(packRgb9e5(radiance.r, radiance.g, radiance.b), farDepthKey(dot(w, depth))));
-                atomicMin(visibility[py * uint(size.x) + px], word);
-            }
+                if (inside && (!fading || lodDitherKeepsLevel(isFadeLod, ditherLevel, px, py))) {
+                    vec3 w =
+                        vec3(float(nearEdgeValue(e0, at)), float(nearEdgeValue(e1, at)), float(nearEdgeValue(e2, at))) *
+                        invArea;
+                    vec3 pw = w * invW; // perspective-correct weights
+                    pw /= pw.x + pw.y + pw.z;
+                    vec3 uvFacing = pw.x * v0.uvFacing + pw.y * v1.uvFacing + pw.z * v2.uvFacing;
+                    vec4 texel = albedo.w > 0.5 ? vec4(albedo.rgb, 1.0) : textureLod(atlas, uvFacing.xy, mip);
+                    if (texel.a >= 0.5) {
+                        bool front = uvFacing.z >= 0.0;
+                        vec3 light = front ? pw.x * v0.front + pw.y * v1.front + pw.z * v2.front
+                                           : pw.x * v0.back + pw.y * v1.back + pw.z * v2.back;
+                        vec3 radiance = texel.rgb * light;
+                        if (kLodView)
+                            radiance =
+                                kLodViewColors[min(lod, kLodFar)] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
+                        uint64_t word = packUint2x32(
+                            uvec2(packRgb9e5(radiance.r, radiance.g, radiance.b), farDepthKey(dot(w, depth))));
+                        atomicMin(visibility[py * uint(size.x) + px], word);
+                    }
+                }
+                nearNextCoveredRow(tri, row, col, hi, e0, e1, e2);
+            } while (col <= hi);
         }
     }
 }
