@@ -119,8 +119,9 @@ void main() {
             // end, after the pixel's work: llvmpipe runs all of a loop's body in each pass, whatever
             // its lanes decide, so a loop that tests at its start (as `for (;;)` with a `break`
             // ahead of the work) runs the pixel's work once more, for no lane, after the last pixel
-            // of every SIMD row's triangles: 8-9 % of the pass in the low view (docs/BENCHMARKS.md,
-            // "The near raster's loop tested at its end"). The same pixels, the same words.
+            // of every SIMD row's triangles: 1-4 ms of the pass's 32-35 in the low view on lavapipe
+            // (docs/BENCHMARKS.md, "The near raster's loop tested at its end"). The same pixels, the
+            // same words.
             int row = tri.rowLo, col = nearSpanLow(e2, nearSpanLow(e1, nearSpanLow(e0, tri.colLo)));
             int hi = nearSpanHigh(e2, nearSpanHigh(e1, nearSpanHigh(e0, tri.colHi)));
             nearNextCoveredRow(tri, row, col, hi, e0, e1, e2);
