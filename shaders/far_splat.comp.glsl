@@ -33,25 +33,24 @@ layout(set = 0, binding = 4, std430) readonly buffer Clumps { GpuClump clumps[];
 // meshes read: llvmpipe loads a storage buffer lane by lane, each component behind its own branch,
 // and a texel buffer with one gather per texel (docs/BENCHMARKS.md).
 layout(set = 0, binding = 5) uniform usamplerBuffer farSamples; // GpuFarSample: 2 texels each
-layout(set = 0, binding = 6) uniform usamplerBuffer lodVertices; // GpuLodVertex: 3 texels each
-layout(set = 0, binding = 7) uniform samplerBuffer motionData;
-layout(set = 0, binding = 8) uniform usamplerBuffer vertexLight;
-layout(set = 0, binding = 9, std430) buffer Visibility { uint64_t visibility[]; };
+layout(set = 0, binding = 6) uniform samplerBuffer motionData;
+layout(set = 0, binding = 7) uniform usamplerBuffer vertexLight;
+layout(set = 0, binding = 8, std430) buffer Visibility { uint64_t visibility[]; };
 // For each instance's bounding sphere (the cull pass's): the coin's bound below.
-layout(set = 0, binding = 10, std430) readonly buffer Instances { GpuInstance instances[]; };
-layout(set = 0, binding = 11) uniform samplerBuffer motionRows; // motionData's basis rows, a texel each
-layout(set = 0, binding = 12) uniform usamplerBuffer farMotion;  // GpuFarMotion per GpuLodVertex
+layout(set = 0, binding = 9, std430) readonly buffer Instances { GpuInstance instances[]; };
+layout(set = 0, binding = 10) uniform usamplerBuffer farMotion; // GpuFarMotion per GpuLodVertex
 // As instance.vert: the mirror plane's normal (xz).
 layout(push_constant) uniform FarParams { vec4 mirrorNormal; };
 
-// A sample's displacement from its mean pose, d = sum over its last-LOD vertex's modes k of U_k q_k
-// (clump_motion.glsl's sum), from that vertex's far motion texel (GpuFarMotion): the first two rows
-// as half floats, zero past the rank, so that a sample reads no row of its own where the last LOD
-// plays one or two modes (the bundled irises' at most); further rows, if any, from motionRows (those
-// of `vertex`, its GpuLodVertex). The coordinates are the far field's copy of the last LOD's
+// A sample's displacement from its mean pose, d = sum over the modes k its last-LOD vertex plays in
+// the far field (at most kFarMotionModes, its block's strongest) of U_k q_k (clump_motion.glsl's
+// sum), from that vertex's far motion texel (GpuFarMotion): its rows as half floats, zero past its
+// rank, so that a sample reads no row of its own and runs no loop over its modes (llvmpipe would
+// run such a loop's body for every SIMD row, whether or not a lane enters it: docs/BENCHMARKS.md,
+// "The splat pass's loops"). The coordinates are the far field's copy of the last LOD's
 // (GpuClump::motion.x), a frame's in one or two cache lines: `frames` holds where the instance's two
 // frames start there.
-vec3 farSampleDisplacement(uvec4 motion, uint vertex, uvec2 frames, GpuDrawInstance inst) {
+vec3 farSampleDisplacement(uvec4 motion, uvec2 frames, GpuDrawInstance inst) {
     uint rank = motion.w >> kFarMotionRankShift;
     vec3 d = vec3(0.0);
     if (rank > 0u) {
@@ -64,12 +63,6 @@ vec3 farSampleDisplacement(uvec4 motion, uint vertex, uvec2 frames, GpuDrawInsta
         }
         vec2 a = unpackHalf2x16(motion.x), b = unpackHalf2x16(motion.y), c = unpackHalf2x16(motion.z);
         d = vec3(a, b.x) * qa + vec3(b.y, c) * qb;
-        for (uint k = 2u; k < rank; ++k) {
-            float q = texelFetch(motionData, int(q0 + k)).r;
-            if (inst.pose.z > 0.0)
-                q = mix(q, texelFetch(motionData, int(q1 + k)).r, inst.pose.z);
-            d += texelFetch(motionRows, int(texelFetch(lodVertices, int(3u * vertex + 2u)).x + k)).xyz * q;
-        }
     }
     return d;
 }
@@ -167,8 +160,7 @@ void main() {
             next += lanes;
             uint slot = clump.far.x + farSampleSlot(start, k, clump.far.y);
             farSample.data = texelFetch(farSamples, int(2u * slot + 1u));
-            uint vertex = farSample.data.w;
-            vec3 d = farSampleDisplacement(texelFetch(farMotion, int(vertex)), vertex, farFrames, inst);
+            vec3 d = farSampleDisplacement(texelFetch(farMotion, int(farSample.data.w)), farFrames, inst);
             vec3 p = uintBitsToFloat(farSample.position.xyz) + d, n = unpackOctahedralNormal(farSample.data.x);
             if (mirrored) {
                 p -= 2.0 * dot(p, m) * m;
@@ -219,15 +211,21 @@ void main() {
                 radiance = kLodViewColors[kLodFar] * (front ? 1.0 : 0.6) / max(frame.skyZenith.w, 1e-6);
             uint64_t word = packUint2x32(uvec2(packRgb9e5(radiance.r, radiance.g, radiance.b), farDepthKey(ndc.z)));
 
-            for (uint j = 0u; j < side; ++j)
-                for (uint i = 0u; i < side; ++i) {
+            // The square's rows and columns in loops tested at their end (a side is at least 1):
+            // llvmpipe runs a loop's whole body in each pass, whatever its lanes decide, so loops
+            // tested at their start ran the atomic's pass once more, for no lane, after each row
+            // and again after the square (docs/BENCHMARKS.md, "The splat pass's loops"). The same
+            // pixels, the same words.
+            uint j = 0u;
+            do {
+                uint i = 0u;
+                do {
                     ivec2 at = corner + ivec2(i, j);
-                    if (at.x < 0 || at.y < 0 || at.x >= size.x || at.y >= size.y)
-                        continue;
-                    if (fade > 0.0 && !lodDitherKeeps(isFadeLod, fade, uint(at.x), uint(at.y)))
-                        continue;
-                    atomicMin(visibility[uint(at.y) * uint(size.x) + uint(at.x)], word);
-                }
+                    if (at.x >= 0 && at.y >= 0 && at.x < size.x && at.y < size.y &&
+                        (fade <= 0.0 || lodDitherKeeps(isFadeLod, fade, uint(at.x), uint(at.y))))
+                        atomicMin(visibility[uint(at.y) * uint(size.x) + uint(at.x)], word);
+                } while (++i < side);
+            } while (++j < side);
         }
     }
 }

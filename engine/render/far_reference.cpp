@@ -36,8 +36,8 @@ template <typename T> const T& at(const std::vector<T>& values, size_t index, co
     return values[index];
 }
 
-// far_splat.comp's farSampleDisplacement: the first two rows from the sample's motion texel (half
-// floats), further ones from motionData's rows.
+// far_splat.comp's farSampleDisplacement: the rows the far field plays (at most kFarMotionModes)
+// from the sample's motion texel (half floats).
 glm::vec3 farSampleDisplacement(const FarSplatInputs& in, const gpu::GpuFarSample& farSample, const glm::uvec2& frames,
                                 const gpu::GpuDrawInstance& inst) {
     const std::vector<float>& motionData = in.motionData;
@@ -57,14 +57,7 @@ glm::vec3 farSampleDisplacement(const FarSplatInputs& in, const gpu::GpuFarSampl
     const float qa = coordinateAt(q0, 0u), qb = coordinateAt(q0, second);
     const glm::vec2 a = glm::unpackHalf2x16(motion.rows.x), b = glm::unpackHalf2x16(motion.rows.y),
                     c = glm::unpackHalf2x16(motion.rows.z);
-    glm::vec3 d = glm::vec3(a, b.x) * qa + glm::vec3(b.y, c) * qb;
-    for (uint32_t k = 2; k < rank; ++k) {
-        const size_t row = 4u * (size_t(at(in.lodVertices, farSample.data.w, "LOD vertex").motion.x) + k);
-        d += glm::vec3(at(motionData, row, "motion row"), at(motionData, row + 1u, "motion row"),
-                       at(motionData, row + 2u, "motion row")) *
-             coordinateAt(q0, k);
-    }
-    return d;
+    return glm::vec3(a, b.x) * qa + glm::vec3(b.y, c) * qb;
 }
 
 } // namespace

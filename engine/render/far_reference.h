@@ -22,7 +22,6 @@ struct FarSplatInputs {
     std::vector<gpu::GpuDrawInstance> drawInstances;
     std::vector<gpu::GpuClump> clumps;
     std::vector<gpu::GpuFarSample> farSamples;
-    std::vector<gpu::GpuLodVertex> lodVertices;
     std::vector<gpu::GpuFarMotion> farMotion;
     std::vector<float> motionData;
     std::vector<glm::uvec4> vertexLight;

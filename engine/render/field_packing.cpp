@@ -112,10 +112,21 @@ uint32_t packLods(const FieldClump& clump, size_t clumpIndex, uint32_t lodCount,
     return lastLodBase;
 }
 
-// The far field's motion coordinates: per frame, the last LOD's coordinates of each block in turn
-// (its first ranks[lastLod]), appended to motionData at GpuClump::motion.x, GpuClump::graphSizes.w
-// of them per frame. A far instance's samples then read one or two cache lines of a frame's
-// coordinates instead of one per block spread over all of them: on lavapipe, about 6 ms less of the
+// The modes of a block that the far field plays: the last LOD's `rank`, at most kFarMotionModes.
+// PCA orders a block's modes by energy, so these are its strongest. The bundled `full` library's
+// last LOD plays up to 5 modes in a few blocks; the splat pass's loop over the modes past the two
+// its texel holds cost 7-8 ms of the default view on lavapipe, paid for every sample (llvmpipe
+// runs a loop's body once for a SIMD row even where no lane enters it; docs/BENCHMARKS.md, "The
+// splat pass's loops"). The far field, below 28 px, hands over from LOD 2, which plays up to 11.
+uint32_t farRank(uint32_t rank) {
+    return std::min(rank, gpu::kFarMotionModes);
+}
+
+// The far field's motion coordinates: per frame, the coordinates of each block in turn that the
+// far field plays (its first ranks[lastLod], at most kFarMotionModes: farRank), appended to
+// motionData at GpuClump::motion.x, GpuClump::graphSizes.w of them per frame. A far instance's
+// samples then read one or two cache lines of a frame's coordinates instead of one per block
+// spread over all of them: on lavapipe, about 6 ms less of the
 // splat pass at 1280x720 on a 2-core Zen 3, with GpuFarMotion (docs/BENCHMARKS.md, 2026-12-02
 // (morning)). Returns each block's first far coordinate in a frame.
 std::vector<uint32_t> packFarCoordinates(const FieldClump& clump, uint32_t lastLod, FieldPacking& p, gpu::GpuClump& g) {
@@ -124,7 +135,7 @@ std::vector<uint32_t> packFarCoordinates(const FieldClump& clump, uint32_t lastL
     uint32_t perFrame = 0;
     for (size_t b = 0; b < motion.blocks.size(); ++b) {
         first[b] = perFrame;
-        perFrame += motion.blocks[b].ranks[lastLod];
+        perFrame += farRank(motion.blocks[b].ranks[lastLod]);
     }
     g.motion.x = uint32_t(p.motionData.size());
     g.graphSizes.w = motion.frames > 0 ? perFrame : 0u;
@@ -133,23 +144,24 @@ std::vector<uint32_t> packFarCoordinates(const FieldClump& clump, uint32_t lastL
     const size_t modesPerFrame = motion.modesPerFrame();
     for (uint32_t f = 0; f < motion.frames; ++f)
         for (const MotionBlock& block : motion.blocks)
-            for (uint32_t k = 0; k < block.ranks[lastLod]; ++k)
+            for (uint32_t k = 0; k < farRank(block.ranks[lastLod]); ++k)
                 p.motionData.push_back(motion.coords[f * modesPerFrame + block.coordOffset + k]);
     return first;
 }
 
 // A far sample's GpuFarMotion: the motion of the last-LOD vertex it follows (`motion`, its
-// GpuLodVertex::motion), its first two rows as half floats (zero past its rank) and its block's
-// first far coordinate (`farFirst`, packFarCoordinates). The splat pass then reads a sample's motion
-// as one texel rather than its LOD vertex's and one per mode. A half float holds a row to 2^-11 of
-// itself (about 10 µm of a clump's sway); rows below the smallest normal half are stored as 0.
+// GpuLodVertex::motion) at the far field's rank (farRank), its rows as half floats (zero past that
+// rank) and its block's first far coordinate (`farFirst`, packFarCoordinates). The splat pass then
+// reads a sample's motion as one texel rather than its LOD vertex's and one per mode. A half float
+// holds a row to 2^-11 of itself (about 10 µm of a clump's sway); rows below the smallest normal
+// half are stored as 0.
 gpu::uvec4 farSampleMotion(const FieldPacking& p, const gpu::uvec4& motion, uint32_t farFirst, size_t clumpIndex) {
-    const uint32_t rank = motion.w & 0xffffu;
+    const uint32_t rank = farRank(motion.w & 0xffffu);
     if (farFirst > gpu::kFarMotionOffsetMask || rank >= (1u << (32u - gpu::kFarMotionRankShift)))
         throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample's motion (coordinate " +
                     std::to_string(farFirst) + ", rank " + std::to_string(rank) + ") does not fit its word");
     float rows[6] = {};
-    for (uint32_t k = 0; k < std::min(rank, 2u); ++k)
+    for (uint32_t k = 0; k < rank; ++k)
         for (uint32_t c = 0; c < 3; ++c) {
             const float value = p.motionData[4 * size_t(motion.x + k) + c];
             if (!(std::abs(value) <= 65504.0f))

@@ -272,7 +272,7 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
         createTexelBufferView(ctx, r.groundTexelStart, VK_FORMAT_R32_UINT, 4, "the ground light map's texels");
     r.groundEntryTexels =
         createTexelBufferView(ctx, r.groundEntries, VK_FORMAT_R32G32_UINT, 8, "the ground light map's lists");
-    // (lodVertices, motionData, farSamples, farMotion, farList and farDispatch are read back by the splat pass's
+    // (motionData, farSamples, farMotion, farList and farDispatch are read back by the splat pass's
     // reference test.)
     deviceBuffer(r.farList, nullptr, instances.size() * 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.farDispatch, nullptr, sizeof(gpu::GpuFarDispatch),
@@ -724,8 +724,8 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
     Pipeline& splat = lodViewShown(r) ? r.farSplatLodView : r.farSplat;
     bindPipeline(ctx, cmd, splat,
                  {r.frameUniforms, r.farList, r.farDispatch, r.drawInstances, r.clumps, Binding(r.farSampleTexels),
-                  Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), t.farVisibility,
-                  r.instances, Binding(r.motionRowTexels), Binding(r.farMotionTexels)});
+                  Binding(r.motionTexels), Binding(r.vertexLightTexels), t.farVisibility, r.instances,
+                  Binding(r.farMotionTexels)});
     pushConstants(ctx, cmd, splat, &r.mirrorNormal, sizeof(glm::vec4));
     vkCmdDispatchIndirect(cmd, r.farDispatch.buffer, 0);
 }

@@ -141,13 +141,16 @@ struct GpuFarSample {
 };
 // The motion of a last-LOD vertex as far samples follow it (farMotion, in GpuLodVertex order, set
 // for the last LOD's vertices): a texel that the splat pass reads instead of the vertex's motion
-// word and a row per mode.
+// word and a row per mode. The far field plays at most kFarMotionModes modes of a vertex's block,
+// its strongest (the last LOD's first), so the texel holds all the rows it plays.
 struct GpuFarMotion {
     uvec4 rows; // xyz its first two rows as half floats (x: row 0's x and y, y: row 0's z and row 1's x, z: row
                 // 1's y and z; zero past its rank), w its block's first far-field coordinate in a frame
-                // (GpuClump::motion.x) | its rank << kFarMotionRankShift (far_splat.comp's
-                // farSampleDisplacement)
+                // (GpuClump::motion.x) | its far rank (at most kFarMotionModes) << kFarMotionRankShift
+                // (far_splat.comp's farSampleDisplacement)
 };
+// The most modes of its block a far sample plays (field_packing.cpp, farSampleMotion).
+MEADOW_CONST kFarMotionModes = 2;
 // GpuFarSample::motion.w: the rank above the coordinate offset.
 MEADOW_CONST kFarMotionRankShift = 24;
 MEADOW_CONST kFarMotionOffsetMask = 0xffffff;

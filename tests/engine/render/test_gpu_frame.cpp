@@ -8,6 +8,7 @@
 #include "pipeline/far_samples.h"
 #include "render/cpu_driver.h"
 #include "render/far_reference.h"
+#include "render/field_packing.h"
 #include "render/field_renderer.h"
 #include "render/near_reference.h"
 #include "render/offscreen.h"
@@ -386,8 +387,6 @@ static void splatPassMatchesCpuReference(Context& ctx, uint32_t lastLodRank) {
     in.clumps = readAll<gpu::GpuClump>(*context, renderer.clumps, field.clumps.size());
     in.farSamples =
         readAll<gpu::GpuFarSample>(*context, renderer.farSamples, renderer.farSamples.size / sizeof(gpu::GpuFarSample));
-    in.lodVertices = readAll<gpu::GpuLodVertex>(*context, renderer.lodVertices,
-                                                renderer.lodVertices.size / sizeof(gpu::GpuLodVertex));
     in.farMotion =
         readAll<gpu::GpuFarMotion>(*context, renderer.farMotion, renderer.farMotion.size / sizeof(gpu::GpuFarMotion));
     in.motionData = readAll<float>(*context, renderer.motionData, renderer.motionData.size / sizeof(float));
@@ -449,13 +448,60 @@ static void splatPassMatchesCpuReference(Context& ctx, uint32_t lastLodRank) {
     EXPECT_LE(hiddenButWritten, hidden / 20) << "of " << hidden << " pixels whose sample lies behind the meshes";
 }
 
+// The far field plays at most kFarMotionModes modes of a sample's block, its strongest (the last
+// LOD's first): a sample's motion texel holds all its rows, and the far coordinates of a frame hold
+// those modes' coordinates alone. (No device: packField on the CPU, here beside the splat pass's
+// tests for the moving clump they share.) A clump whose last LOD plays 3 modes in its one block, and one
+// whose last LOD plays 1.
+TEST(FieldPacking, FarSamplesPlayAtMostTwoModesOfTheirBlock) {
+    for (uint32_t lastLodRank : {3u, 1u}) {
+        FieldClump clump = movingClump(6, lastLodRank);
+        ASSERT_EQ(clump.motion.blocks.size(), 1u);
+        ASSERT_EQ(clump.motion.blocks[0].ranks[kLodCount - 1], lastLodRank);
+        const std::vector<uint32_t>& farVertices = clump.lods.back().vertices;
+        for (uint32_t k = 0; k < 8; ++k) {
+            FarSample s;
+            s.vertex = s.lightVertex = farVertices[(k * 7) % farVertices.size()];
+            clump.far.push_back(s);
+        }
+        clump.farArea = 1.0f;
+        const FieldPacking packed =
+            packField(std::span<const FieldClump>(&clump, 1), std::span<const gpu::GpuInstance>(), kLodCount);
+        const uint32_t played = std::min(lastLodRank, gpu::kFarMotionModes);
+        const gpu::GpuClump& g = packed.clumps.at(0);
+        ASSERT_EQ(g.graphSizes.w, played) << "far coordinates per frame";
+        const size_t modesPerFrame = clump.motion.modesPerFrame();
+        for (uint32_t f = 0; f < clump.motion.frames; ++f)
+            for (uint32_t k = 0; k < played; ++k)
+                ASSERT_EQ(packed.motionData.at(g.motion.x + f * played + k), clump.motion.coords[f * modesPerFrame + k])
+                    << "frame " << f << " mode " << k;
+        for (uint32_t i = 0; i < clump.far.size(); ++i) {
+            const gpu::GpuFarSample& sample = packed.farSamples.at(g.far.x + i);
+            const gpu::GpuLodVertex& vertex = packed.lodVertices.at(sample.data.w);
+            ASSERT_EQ(vertex.motion.w & 0xffffu, lastLodRank) << "the LOD vertex keeps the last LOD's rank";
+            const gpu::GpuFarMotion& motion = packed.farMotion.at(sample.data.w);
+            EXPECT_EQ(motion.rows.w >> gpu::kFarMotionRankShift, played) << "sample " << i;
+            EXPECT_EQ(motion.rows.w & gpu::kFarMotionOffsetMask, 0u) << "the block's first far coordinate";
+            const glm::vec2 halves[3] = {glm::unpackHalf2x16(motion.rows.x), glm::unpackHalf2x16(motion.rows.y),
+                                         glm::unpackHalf2x16(motion.rows.z)};
+            for (uint32_t k = 0; k < 2; ++k)
+                for (uint32_t c = 0; c < 3; ++c) {
+                    const uint32_t h = 3 * k + c;
+                    const float got = halves[h / 2][int(h % 2)];
+                    const float want = k < played ? packed.motionData.at(4 * size_t(vertex.motion.x + k) + c) : 0.0f;
+                    EXPECT_NEAR(got, want, std::abs(want) * 1e-3f + 7e-5f) << "sample " << i << " row " << k;
+                }
+        }
+    }
+}
+
 // The moving clump's last LOD (which its far samples follow) playing one mode, as the test field's.
 TEST_F(Gpu, SplatPassMatchesCpuReference) {
     splatPassMatchesCpuReference(*context, 1);
 }
 
-// ...and three: the sample's motion texel holds the first two rows (GpuFarMotion), the third comes
-// from the motion rows.
+// ...and three, of which the far field plays the first two, both in the sample's motion texel
+// (GpuFarMotion; FieldPacking.FarSamplesPlayAtMostTwoModesOfTheirBlock).
 TEST_F(Gpu, SplatPassMatchesCpuReferenceWithThreeModesAtTheLastLod) {
     splatPassMatchesCpuReference(*context, 3);
 }

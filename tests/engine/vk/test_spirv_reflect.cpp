@@ -59,21 +59,20 @@ TEST(SpirvReflect, FarPassesLayout) {
     ShaderReflection splat = reflectShader(findShader("far_splat.comp"), "far_splat.comp");
     EXPECT_EQ(splat.localSize[0], gpu::kFarGroupSize);
     EXPECT_TRUE(splat.localSizeXSpecialized); // the threads per instance are the device's
-    // Frame; far list, dispatch, draw records, clumps; samples, LOD vertices, motion, light as texel
+    // Frame; far list, dispatch, draw records, clumps; samples, motion coordinates, light as texel
     // buffers (samplerBuffer: a sampled image of Dim Buffer); the visibility buffer; the instances
-    // (their bounding spheres bound the coverage coin); the motion's basis rows and the last LOD's
-    // vertices' motion as far samples read it (GpuFarMotion) as texel buffers. The mirror plane as
-    // a push constant. (The meshes' depth is the resolve's: far_splat.h, farWordShows.)
-    ASSERT_EQ(splat.bindings.size(), 13u);
+    // (their bounding spheres bound the coverage coin); the last LOD's vertices' motion as far
+    // samples read it (GpuFarMotion: every row the far field plays) as a texel buffer. The mirror
+    // plane as a push constant. (The meshes' depth is the resolve's: far_splat.h, farWordShows.)
+    ASSERT_EQ(splat.bindings.size(), 11u);
     EXPECT_EQ(splat.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     for (uint32_t b = 1; b <= 4; ++b)
         EXPECT_EQ(splat.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
-    for (uint32_t b = 5; b <= 8; ++b)
+    for (uint32_t b = 5; b <= 7; ++b)
         EXPECT_EQ(splat.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << b;
+    EXPECT_EQ(splat.bindings.at(8), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     EXPECT_EQ(splat.bindings.at(9), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    EXPECT_EQ(splat.bindings.at(10), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    EXPECT_EQ(splat.bindings.at(11), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
-    EXPECT_EQ(splat.bindings.at(12), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
+    EXPECT_EQ(splat.bindings.at(10), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
     EXPECT_EQ(splat.pushConstantBytes, 16u);
     ShaderReflection resolve = reflectShader(findShader("far_resolve.comp"), "far_resolve.comp");
     EXPECT_EQ(resolve.localSize[0], gpu::kFarResolveGroupSize);
