@@ -81,11 +81,14 @@ void main() {
     ivec2 size = ivec2(frame.lodScreen.zw);
     const uint lanes = gl_WorkGroupSize.x / kFarInstancesPerGroup;
     uint lane = gl_LocalInvocationID.x % lanes, set = gl_LocalInvocationID.x / lanes;
-    for (uint item = gl_WorkGroupID.x * kFarInstancesPerGroup + set; item < total;
-         item += gl_NumWorkGroups.x * kFarInstancesPerGroup) {
-        uvec2 listed = farList[item];
+    // The loop over sets of instances tests at its end (as the square's loops below): a workgroup has
+    // a set (the cull pass adds one workgroup per kFarInstancesPerGroup listed instances), though the
+    // last set may be short: its threads past the list draw no sample.
+    uint item = gl_WorkGroupID.x * kFarInstancesPerGroup + set;
+    do {
+        uvec2 listed = farList[min(item, total - 1u)];
         uint entry = listed.x;
-        uint count = listed.y;
+        uint count = item < total ? listed.y : 0u;
         uint instance = entry & kLodEntryIndexMask;
         GpuDrawInstance inst = drawInstances[instance];
         bool isFadeLod = (entry & kLodFadeEntryBit) != 0u;
@@ -227,5 +230,5 @@ void main() {
                 } while (++i < side);
             } while (++j < side);
         }
-    }
+    } while ((item += gl_NumWorkGroups.x * kFarInstancesPerGroup) < total);
 }

@@ -77,7 +77,11 @@ void main() {
     // z_clip is the near plane's distance for every point (camera.cpp's reversed, infinite projection).
     float nearPlane = frame.viewProj[3][2];
     uint stride = workStride(total);
-    for (uint item = gl_WorkGroupID.x; item < total; item += gl_NumWorkGroups.x) {
+    // The loops over draws and triangles test at their end (see the pixel loop's comment): a
+    // workgroup has a draw (the cull pass adds one workgroup per listed draw) and a draw has a
+    // triangle; a lane past its draw's last triangle draws nothing.
+    uint item = gl_WorkGroupID.x;
+    do {
         uvec4 listed = nearList[workEntry(item, total, stride)];
         uint entry = listed.x;
         GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
@@ -87,13 +91,15 @@ void main() {
         bool fading = inst.pose.w > 0.0;
         bool isFadeLod = (entry & kLodFadeEntryBit) != 0u;
         uint ditherLevel = lodDitherLevel(inst.pose.w);
-        for (uint t = gl_LocalInvocationID.x; 3u * t < mesh.w; t += gl_WorkGroupSize.x) {
-            uint first = mesh.z + 3u * t;
+        uint t = gl_LocalInvocationID.x;
+        do {
+            bool listedTriangle = 3u * t < mesh.w;
+            uint first = mesh.z + 3u * min(t, mesh.w / 3u - 1u);
             NearVertex v0 = readVertex(listed.z + texelFetch(indices, int(first)).r);
             NearVertex v1 = readVertex(listed.z + texelFetch(indices, int(first + 1u)).r);
             NearVertex v2 = readVertex(listed.z + texelFetch(indices, int(first + 2u)).r);
             NearTriangle tri = nearSetUp(v0.pixel, v1.pixel, v2.pixel, size.x, size.y, int(listed.w));
-            if (!tri.drawn)
+            if (!tri.drawn || !listedTriangle)
                 continue;
             if (tri.swapped) {
                 NearVertex v = v1;
@@ -153,6 +159,6 @@ void main() {
                 }
                 nearNextCoveredRow(tri, row, col, hi, e0, e1, e2);
             } while (col <= hi);
-        }
-    }
+        } while (3u * (t += gl_WorkGroupSize.x) < mesh.w);
+    } while ((item += gl_NumWorkGroups.x) < total);
 }

@@ -34,21 +34,28 @@ void main() {
     uint total = nearDispatch.count;
     vec2 size = frame.lodScreen.zw;
     uint stride = workStride(total);
-    for (uint item = gl_WorkGroupID.x; item < total; item += gl_NumWorkGroups.x) {
+    // Both loops test at their end (near_raster.comp's): a workgroup has a draw (the cull pass adds
+    // one workgroup per listed draw) and a mesh has a vertex; a lane past the last vertex writes
+    // nothing.
+    uint item = gl_WorkGroupID.x;
+    do {
         uvec4 listed = nearList[workEntry(item, total, stride)];
         GpuDrawInstance inst = drawInstances[listed.x & kLodEntryIndexMask];
         uvec4 mesh = nearMeshes[listed.y];
-        for (uint v = gl_LocalInvocationID.x; v < mesh.y; v += gl_WorkGroupSize.x) {
-            ClumpVertex o = shadeClumpVertex(mesh.x + v, inst, mirrorNormal.xz);
+        uint v = gl_LocalInvocationID.x;
+        do {
+            ClumpVertex o = shadeClumpVertex(mesh.x + min(v, mesh.y - 1u), inst, mirrorNormal.xz);
             // Every listed instance lies in front of the near plane (the cull pass's test): w > 0.
             float invW = 1.0 / o.clip.w;
             vec2 pixel = (o.clip.xy * invW * 0.5 + 0.5) * size;
             uint slot = 2u * (listed.z + v);
-            nearVertices[slot] = uvec4(floatBitsToUint(pixel.x), floatBitsToUint(pixel.y), floatBitsToUint(invW),
-                                       floatBitsToUint(o.uvFacing.z));
-            nearVertices[slot + 1u] = uvec4(packRgb9e5(o.front.r, o.front.g, o.front.b),
-                                            packRgb9e5(o.back.r, o.back.g, o.back.b),
-                                            floatBitsToUint(o.uvFacing.x), floatBitsToUint(o.uvFacing.y));
-        }
-    }
+            if (v < mesh.y) {
+                nearVertices[slot] = uvec4(floatBitsToUint(pixel.x), floatBitsToUint(pixel.y), floatBitsToUint(invW),
+                                           floatBitsToUint(o.uvFacing.z));
+                nearVertices[slot + 1u] = uvec4(packRgb9e5(o.front.r, o.front.g, o.front.b),
+                                                packRgb9e5(o.back.r, o.back.g, o.back.b),
+                                                floatBitsToUint(o.uvFacing.x), floatBitsToUint(o.uvFacing.y));
+            }
+        } while ((v += gl_WorkGroupSize.x) < mesh.y);
+    } while ((item += gl_NumWorkGroups.x) < total);
 }
