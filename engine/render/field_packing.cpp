@@ -156,10 +156,11 @@ std::vector<uint32_t> packFarCoordinates(const FieldClump& clump, uint32_t lastL
 // holds a row to 2^-11 of itself (about 10 µm of a clump's sway); rows below the smallest normal
 // half are stored as 0.
 gpu::uvec4 farSampleMotion(const FieldPacking& p, const gpu::uvec4& motion, uint32_t farFirst, size_t clumpIndex) {
+    static_assert(gpu::kFarMotionModes < (1u << (32u - gpu::kFarMotionRankShift)), "the far rank fits its bits");
     const uint32_t rank = farRank(motion.w & 0xffffu);
-    if (farFirst > gpu::kFarMotionOffsetMask || rank >= (1u << (32u - gpu::kFarMotionRankShift)))
+    if (farFirst > gpu::kFarMotionOffsetMask)
         throw Error("field clump " + std::to_string(clumpIndex) + ": a far-field sample's motion (coordinate " +
-                    std::to_string(farFirst) + ", rank " + std::to_string(rank) + ") does not fit its word");
+                    std::to_string(farFirst) + ") does not fit its word");
     float rows[6] = {};
     for (uint32_t k = 0; k < rank; ++k)
         for (uint32_t c = 0; c < 3; ++c) {
