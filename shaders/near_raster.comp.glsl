@@ -57,16 +57,21 @@ NearVertex readVertex(uint slot) {
 }
 
 // Past the end of its row's span (col > hi), on to the first of the next rows with a pixel inside;
-// at the triangle's last row, col stays past hi.
+// at the triangle's last row, col stays past hi. The loop tests at its end behind a guard: llvmpipe
+// runs a loop's body once for its SIMD row even when no lane enters it, so a loop tested at its
+// start ran the row step once more than its busiest lane needed, in every pass of the pixel loop
+// where a lane changed row (docs/BENCHMARKS.md). The same rows, the same pixels.
 void nearNextCoveredRow(NearTriangle tri, inout int row, inout int col, inout int hi, inout NearEdge e0,
                         inout NearEdge e1, inout NearEdge e2) {
-    while (col > hi && row < tri.rowHi) {
-        ++row;
-        e0 = nearEdgeNextRow(e0);
-        e1 = nearEdgeNextRow(e1);
-        e2 = nearEdgeNextRow(e2);
-        col = nearSpanLow(e2, nearSpanLow(e1, nearSpanLow(e0, tri.colLo)));
-        hi = nearSpanHigh(e2, nearSpanHigh(e1, nearSpanHigh(e0, tri.colHi)));
+    if (col > hi && row < tri.rowHi) {
+        do {
+            ++row;
+            e0 = nearEdgeNextRow(e0);
+            e1 = nearEdgeNextRow(e1);
+            e2 = nearEdgeNextRow(e2);
+            col = nearSpanLow(e2, nearSpanLow(e1, nearSpanLow(e0, tri.colLo)));
+            hi = nearSpanHigh(e2, nearSpanHigh(e1, nearSpanHigh(e0, tri.colHi)));
+        } while (col > hi && row < tri.rowHi);
     }
 }
 

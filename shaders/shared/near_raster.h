@@ -99,17 +99,16 @@ MEADOW_NEAR_FN int nearGridShift(int sub) {
 
 // floor(a / b) for b > 0 and |a| < 2^30, by a float division corrected to the exact quotient: SIMD
 // units have no integer division (llvmpipe runs it lane by lane). The float quotient errs by at
-// most 3 * 2^-24 of itself, below 200 / b, so the corrections step a few times at most.
+// most 3 * 2^-24 of itself, below 200 / b, so the corrections step a few times at most. One loop
+// steps either way: llvmpipe runs a loop's body once for its SIMD row even where no lane enters it,
+// and nearly every quotient needs no step (docs/BENCHMARKS.md).
 MEADOW_NEAR_FN int nearQuotient(int a, int b) {
     int q = int(nearFloorF(float(a) / float(b)));
     int r = a - q * b;
-    while (r < 0) {
-        q -= 1;
-        r += b;
-    }
-    while (r >= b) {
-        q += 1;
-        r -= b;
+    while (r < 0 || r >= b) {
+        int step = r < 0 ? -1 : 1;
+        q += step;
+        r -= step * b;
     }
     return q;
 }
