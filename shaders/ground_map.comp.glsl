@@ -28,13 +28,20 @@ void main() {
     const uint weightMask = (1u << kGroundWeightBits) - 1u;
     const float unit = 1.0 / float(weightMask);
     vec3 light = vec3(1.0);
-    for (uint e = begin; e < end; ++e) {
-        uvec2 cell = texelFetch(entries, int(e)).rg;
-        uint corner = cell.x, n = (cell.y >> (2u * kGroundWeightBits)) + 1u;
-        vec2 f = vec2(cell.y & weightMask, (cell.y >> kGroundWeightBits) & weightMask) * unit;
-        vec3 r00 = ratioAt(corner), r10 = ratioAt(corner + 1u);
-        vec3 r01 = ratioAt(corner + n), r11 = ratioAt(corner + n + 1u);
-        light *= mix(mix(r00, r10, f.x), mix(r01, r11, f.x), f.y);
+    // The loop tests at its end, behind its guard: llvmpipe runs a loop's body once for its SIMD
+    // row even where no lane enters it, so a loop tested at its start ran one entry's fetches and
+    // multiply more than the row's longest list, for no lane (docs/BENCHMARKS.md). The same
+    // entries in the same order, the same bytes.
+    if (begin < end) {
+        uint e = begin;
+        do {
+            uvec2 cell = texelFetch(entries, int(e)).rg;
+            uint corner = cell.x, n = (cell.y >> (2u * kGroundWeightBits)) + 1u;
+            vec2 f = vec2(cell.y & weightMask, (cell.y >> kGroundWeightBits) & weightMask) * unit;
+            vec3 r00 = ratioAt(corner), r10 = ratioAt(corner + 1u);
+            vec3 r01 = ratioAt(corner + n), r11 = ratioAt(corner + n + 1u);
+            light *= mix(mix(r00, r10, f.x), mix(r01, r11, f.x), f.y);
+        } while (++e < end);
     }
     imageStore(groundLight, texel, vec4(light, 1.0));
 }

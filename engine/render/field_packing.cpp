@@ -250,6 +250,7 @@ void packLight(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
     g.light = gpu::uvec4(uint32_t(p.lightVec4s), clump.yawBins, transferBase, vertexCount);
     p.lightVec4s += uint64_t(vertexCount) * variants * gpu::kLightVec4sPerVertex;
     p.lightVertices.push_back(vertexCount);
+    p.lightGroundPoints.push_back(0);
     const float range = clump.yawHigh - clump.yawLow;
     g.yawBins = range > 0.0f ? glm::vec4(clump.yawLow, float(clump.yawBins) / range, range / float(clump.yawBins), 0.0f)
                              : glm::vec4(clump.yawLow, 0.0f, 0.0f, 0.0f);
@@ -260,7 +261,7 @@ void packLight(const FieldClump& clump, FieldPacking& p, gpu::GpuClump& g) {
         for (float t : clump.groundTransfer)
             p.transfer.insert(p.transfer.end(), {t, 0.0f, 0.0f, 0.0f});
         p.lightVec4s += uint64_t(points) * variants;
-        p.lightVertices.back() += points;
+        p.lightGroundPoints.back() = points;
         g.yawBins.w = clump.groundSize;
     }
 }

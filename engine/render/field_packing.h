@@ -24,7 +24,8 @@ struct FieldPacking {
     std::vector<uint32_t> motionGraph;             // per clump: edge starts, targets, weights, natural successors
     std::vector<float> transfer;                   // vec4s: vertex transfer with gradients, ground grid transfer
     uint64_t lightVec4s = 0;                       // the vertex light buffer's size in uvec4s
-    std::vector<uint32_t> lightVertices;           // per clump: vertices + ground points (light.comp threads)
+    std::vector<uint32_t> lightVertices;           // per clump: vertices (light.comp's threads)
+    std::vector<uint32_t> lightGroundPoints;       // per clump: ground grid points (its ground pipeline's)
     std::vector<gpu::GpuDrawIndexedCommand> draws; // per draw bucket (clump-major), instance counts 0
     std::vector<uint32_t> meshTriangles;           // per draw bucket
     std::vector<uint32_t> meshVertices;            // per draw bucket: its GpuLodVertex from draws' vertexOffset

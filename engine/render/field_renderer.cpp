@@ -133,6 +133,7 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
     r.animate = createComputePipeline(ctx, "animate.comp");
     r.cull = createComputePipeline(ctx, "cull.comp");
     r.light = createComputePipeline(ctx, "light.comp", sizeof(uint32_t));
+    r.lightGround = createComputePipeline(ctx, "light.comp", sizeof(uint32_t), 0, {1u}); // kGroundPoints
     r.tonemap = createComputePipeline(ctx, "tonemap.comp");
     GraphicsPipelineDesc skyDesc{"sky.vert", "sky.frag", kHdrFormat, kDepthFormat};
     skyDesc.depthWrite = false; // at infinite depth (0): drawn where the depth is still the clear value
@@ -337,6 +338,7 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
     const FieldPacking packed = packField(clumps, instances, r.lodCount);
     r.meshTriangles = packed.meshTriangles;
     r.lightVertices = packed.lightVertices;
+    r.lightGroundPoints = packed.lightGroundPoints;
     r.drawCapacity = packed.drawCapacity;
     r.lodVertexCount = packed.lodVertices.size();
     r.visibleCount = packed.visibleCount;
@@ -360,8 +362,8 @@ void fillFieldRenderer(Context& ctx, FieldRenderer& r, std::span<const FieldClum
 } // namespace
 
 void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
-    for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.tonemap, &r.sky, &r.skyBlend, &r.ground, &r.instance,
-                        &r.groundMap, &r.farSplat, &r.farSplatLodView, &r.farResolve, &r.farResolveLdrOnly,
+    for (Pipeline* p : {&r.animate, &r.cull, &r.light, &r.lightGround, &r.tonemap, &r.sky, &r.skyBlend, &r.ground,
+                        &r.instance, &r.groundMap, &r.farSplat, &r.farSplatLodView, &r.farResolve, &r.farResolveLdrOnly,
                         &r.nearVertices, &r.nearRaster, &r.nearRasterLodView})
         destroyPipeline(ctx, *p);
     for (VkBufferView* view :
@@ -580,11 +582,18 @@ void recordLightPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
         // written before these dispatches run and not after them.)
         barrier(cmd, access::kVertexShaderRead | access::kFragmentShaderRead | access::kComputeRead,
                 access::kComputeWrite);
-        bindPipeline(ctx, cmd, r.light,
-                     {r.frameUniforms, r.clumps, Binding(r.transferTexels), r.skyData, r.vertexLight});
-        for (uint32_t c = 0; c < r.clumpCount; ++c) {
-            pushConstants(ctx, cmd, r.light, &c, sizeof(uint32_t));
-            dispatchCovering(cmd, r.light, r.lightVertices[c]);
+        // The clumps' vertices, then their ground grids' points, each through a pipeline of its own
+        // (light.comp's kGroundPoints). The dispatches write disjoint parts of vertexLight.
+        for (Pipeline* pipeline : {&r.light, &r.lightGround}) {
+            const std::vector<uint32_t>& threads = pipeline == &r.light ? r.lightVertices : r.lightGroundPoints;
+            bindPipeline(ctx, cmd, *pipeline,
+                         {r.frameUniforms, r.clumps, Binding(r.transferTexels), r.skyData, r.vertexLight});
+            for (uint32_t c = 0; c < r.clumpCount; ++c) {
+                if (threads[c] == 0)
+                    continue;
+                pushConstants(ctx, cmd, *pipeline, &c, sizeof(uint32_t));
+                dispatchCovering(cmd, *pipeline, threads[c]);
+            }
         }
     }
     barrier(cmd, access::kComputeReadWrite,

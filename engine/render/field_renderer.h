@@ -133,6 +133,7 @@ struct FieldRenderer {
     Pipeline animate;
     Pipeline cull;
     Pipeline light;
+    Pipeline lightGround; // light.comp for the clumps' ground grids (kGroundPoints)
     Pipeline tonemap;
     Pipeline sky;
     Pipeline skyBlend;
@@ -228,7 +229,8 @@ struct FieldRenderer {
     std::vector<uint32_t> drawCapacity;  // per draw bucket: the instances its visible range holds
     uint64_t lodVertexCount = 0;
     uint64_t visibleCount = 0;
-    std::vector<uint32_t> lightVertices; // per clump: vertices + ground points (light.comp threads)
+    std::vector<uint32_t> lightVertices;     // per clump: vertices (light.comp's threads)
+    std::vector<uint32_t> lightGroundPoints; // per clump: ground grid points (lightGround's threads)
     uint32_t terrainIndexCount = 0;
     glm::vec4 mirrorNormal{0.0f, 0.0f, 1.0f, 0.0f}; // push constant of the instance pipeline
     float windAzimuth = 0.0f;
