@@ -23,6 +23,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/packing.hpp>
 #include <span>
+#include <utility>
 
 namespace meadow {
 
@@ -584,15 +585,16 @@ void recordLightPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd) {
                 access::kComputeWrite);
         // The clumps' vertices, then their ground grids' points, each through a pipeline of its own
         // (light.comp's kGroundPoints). The dispatches write disjoint parts of vertexLight.
-        for (Pipeline* pipeline : {&r.light, &r.lightGround}) {
-            const std::vector<uint32_t>& threads = pipeline == &r.light ? r.lightVertices : r.lightGroundPoints;
+        const std::pair<Pipeline*, const std::vector<uint32_t>*> passes[] = {{&r.light, &r.lightVertices},
+                                                                             {&r.lightGround, &r.lightGroundPoints}};
+        for (const auto& [pipeline, threads] : passes) {
             bindPipeline(ctx, cmd, *pipeline,
                          {r.frameUniforms, r.clumps, Binding(r.transferTexels), r.skyData, r.vertexLight});
             for (uint32_t c = 0; c < r.clumpCount; ++c) {
-                if (threads[c] == 0)
+                if ((*threads)[c] == 0)
                     continue;
                 pushConstants(ctx, cmd, *pipeline, &c, sizeof(uint32_t));
-                dispatchCovering(cmd, *pipeline, threads[c]);
+                dispatchCovering(cmd, *pipeline, (*threads)[c]);
             }
         }
     }
