@@ -2,15 +2,15 @@
 // The near raster (near_raster.h): the LOD draws the cull pass listed for it, drawn triangle by
 // triangle in compute into the far field's visibility buffer, instead of through the graphics
 // pipeline (on lavapipe, its one front-end thread; on a GPU, its few geometry units). Each
-// workgroup takes one listed draw at a time (indirect dispatch, then every gl_NumWorkGroups-th
-// slot; slots take draws in work_order.h's spread order, which keeps every lavapipe thread busy),
-// its threads striding over the LOD mesh's triangles, whose vertices near_vertices.comp moved and
-// lit. Each covered pixel is lit as instance.frag lights it (the crossfade dither, the atlas's alpha
+// workgroup (on a GPU) or SIMD row (on a CPU) takes a listed draw (near_raster.h: dealt in turn or
+// taken from a counter; slots take draws in work_order.h's spread order), its threads striding
+// over the LOD mesh's triangles, whose vertices near_vertices.comp moved and lit. Each covered pixel is lit as instance.frag lights it (the crossfade dither, the atlas's alpha
 // test at the mip of the triangle's texel density, the side the eye sees) and merged with a 64-bit
 // atomicMin of (depth key, RGB9E5 radiance), as the splat pass merges samples. far_resolve.comp
 // then shows the winners that are nearer than the meshes.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_EXT_shader_atomic_int64 : require
 #include "common.glsl"
 #include "lod_select.h"
@@ -24,6 +24,9 @@ layout(local_size_x = kNearGroupSize, local_size_x_id = 0) in;
 // llvmpipe runs an `if`'s body whatever the lanes decide, and the view's colours, tested and
 // looked up per pixel, cost about 4 ms of the default view with the view off (docs/BENCHMARKS.md).
 layout(constant_id = 1) const bool kLodView = false;
+// How the workgroups share the draws out (near_raster.h): dealt in turn (false) or taken by each
+// SIMD row from the counter (true).
+layout(constant_id = 2) const bool kTakeDraws = false;
 
 MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer NearList { uvec4 nearList[]; }; // near_raster.h
@@ -35,6 +38,8 @@ layout(set = 0, binding = 6) uniform usamplerBuffer indices;
 layout(set = 0, binding = 7) uniform usamplerBuffer nearVertices; // near_vertices.comp's, 2 texels each
 layout(set = 0, binding = 8) uniform sampler2D atlas;
 layout(set = 0, binding = 9, std430) buffer Visibility { uint64_t visibility[]; };
+layout(set = 0, binding = 10, std430) buffer NearTaken { uint nearTaken[2]; }; // near_raster.h
+#include "near_take.glsl"
 
 // One shaded vertex (near_vertices.comp).
 struct NearVertex {
@@ -82,11 +87,13 @@ void main() {
     // z_clip is the near plane's distance for every point (camera.cpp's reversed, infinite projection).
     float nearPlane = frame.viewProj[3][2];
     uint stride = workStride(total);
-    // The loops over draws and triangles test at their end (see the pixel loop's comment): a
-    // workgroup has a draw (the cull pass adds one workgroup per listed draw) and a draw has a
-    // triangle; a lane past its draw's last triangle draws nothing.
-    uint item = gl_WorkGroupID.x;
-    do {
+    // The loops over draws and triangles test at their end (see the pixel loop's comment): a draw
+    // has a triangle, and a lane past its draw's last triangle draws nothing. The threads' first
+    // draw is their workgroup's (the cull pass adds one workgroup per listed draw) or the one their
+    // SIMD row took, if any was left (near_raster.h).
+    NearShare share = nearShareStart(kTakeDraws, kNearTakenRaster);
+    uint item = share.item;
+    if (item < total) do {
         uvec4 listed = nearList[workEntry(item, total, stride)];
         uint entry = listed.x;
         GpuDrawInstance inst = drawInstances[entry & kLodEntryIndexMask];
@@ -96,7 +103,7 @@ void main() {
         bool fading = inst.pose.w > 0.0;
         bool isFadeLod = (entry & kLodFadeEntryBit) != 0u;
         uint ditherLevel = lodDitherLevel(inst.pose.w);
-        uint t = gl_LocalInvocationID.x;
+        uint t = share.lane;
         do {
             bool listedTriangle = 3u * t < mesh.w;
             uint first = mesh.z + 3u * min(t, mesh.w / 3u - 1u);
@@ -164,6 +171,6 @@ void main() {
                 }
                 nearNextCoveredRow(tri, row, col, hi, e0, e1, e2);
             } while (col <= hi);
-        } while (3u * (t += gl_WorkGroupSize.x) < mesh.w);
-    } while ((item += gl_NumWorkGroups.x) < total);
+        } while (3u * (t += share.width) < mesh.w);
+    } while ((item = nearShareNext(kTakeDraws, kNearTakenRaster, share, total)) < total);
 }

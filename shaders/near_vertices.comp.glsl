@@ -1,12 +1,13 @@
 #version 460
 // The near raster's first pass (near_raster.h): every vertex of each listed LOD draw moved and lit
 // once, as instance.vert does it, into the near raster's vertex buffer at the draw's range, which
-// the cull pass allotted. Each workgroup takes one listed draw at a time (indirect dispatch, then
-// every gl_NumWorkGroups-th slot; slots take draws in work_order.h's spread order), its threads
-// striding over the LOD mesh's vertices. near_raster.comp then reads three of them per triangle:
+// the cull pass allotted. Each workgroup (on a GPU) or SIMD row (on a CPU) takes a listed draw
+// (near_raster.h: dealt in turn or taken from a counter; slots take draws in work_order.h's spread
+// order), its threads striding over the LOD mesh's vertices. near_raster.comp then reads three of them per triangle:
 // shaded once rather than once per triangle that uses them.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "common.glsl"
 #include "lod_select.h"
 #include "draw_instance.h"
@@ -15,6 +16,9 @@
 
 // The width is the device's (near_raster.h): specialization constant 0.
 layout(local_size_x = kNearGroupSize, local_size_x_id = 0) in;
+// How the workgroups share the draws out (near_raster.h): dealt in turn (false) or taken by each
+// SIMD row from the counter (true).
+layout(constant_id = 1) const bool kTakeDraws = false;
 
 MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1, std430) readonly buffer NearList { uvec4 nearList[]; }; // near_raster.h
@@ -26,6 +30,8 @@ layout(set = 0, binding = 6) uniform samplerBuffer motionData;
 layout(set = 0, binding = 7) uniform usamplerBuffer vertexLight;
 layout(set = 0, binding = 8, std430) writeonly buffer NearVertices { uvec4 nearVertices[]; }; // 2 per vertex
 layout(set = 0, binding = 9) uniform samplerBuffer motionRows; // motionData's basis rows, a texel each
+layout(set = 0, binding = 10, std430) buffer NearTaken { uint nearTaken[2]; }; // near_raster.h
+#include "near_take.glsl"
 #include "clump_motion.glsl"
 #include "clump_vertex.glsl"
 layout(push_constant) uniform NearParams { vec4 mirrorNormal; }; // as instance.vert's
@@ -34,15 +40,16 @@ void main() {
     uint total = nearDispatch.count;
     vec2 size = frame.lodScreen.zw;
     uint stride = workStride(total);
-    // Both loops test at their end (near_raster.comp's): a workgroup has a draw (the cull pass adds
-    // one workgroup per listed draw) and a mesh has a vertex; a lane past the last vertex writes
-    // nothing.
-    uint item = gl_WorkGroupID.x;
-    do {
+    // Both loops test at their end (near_raster.comp's): a mesh has a vertex, and a lane past the
+    // last vertex writes nothing. The threads' first draw is their workgroup's (the cull pass adds
+    // one workgroup per listed draw) or the one their SIMD row took, if any was left (near_raster.h).
+    NearShare share = nearShareStart(kTakeDraws, kNearTakenVertices);
+    uint item = share.item;
+    if (item < total) do {
         uvec4 listed = nearList[workEntry(item, total, stride)];
         GpuDrawInstance inst = drawInstances[listed.x & kLodEntryIndexMask];
         uvec4 mesh = nearMeshes[listed.y];
-        uint v = gl_LocalInvocationID.x;
+        uint v = share.lane;
         do {
             ClumpVertex o = shadeClumpVertex(mesh.x + min(v, mesh.y - 1u), inst, mirrorNormal.xz);
             // Every listed instance lies in front of the near plane (the cull pass's test): w > 0.
@@ -56,6 +63,6 @@ void main() {
                                                 packRgb9e5(o.back.r, o.back.g, o.back.b),
                                                 floatBitsToUint(o.uvFacing.x), floatBitsToUint(o.uvFacing.y));
             }
-        } while ((v += gl_WorkGroupSize.x) < mesh.y);
-    } while ((item += gl_NumWorkGroups.x) < total);
+        } while ((v += share.width) < mesh.y);
+    } while ((item = nearShareNext(kTakeDraws, kNearTakenVertices, share, total)) < total);
 }

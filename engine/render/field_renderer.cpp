@@ -76,6 +76,17 @@ uint32_t farSplatLanesFor(const VkPhysicalDeviceProperties& device) {
     return gpu::kFarMaxLanes;
 }
 
+uint32_t nearWidthFor(const Context& ctx) {
+    if (ctx.properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU)
+        return gpu::kNearGroupSize;
+    // Two rows, so that the dispatch has twice as many rows as draws (near_raster.h).
+    return std::clamp(2 * ctx.subgroupSize, 2u, 1024u);
+}
+
+bool nearTakesDraws(const Context& ctx) {
+    return ctx.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
 FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clumps,
                                   std::span<const gpu::GpuInstance> instances, const RgbaImage& atlas,
                                   const FieldScenery& scenery) {
@@ -117,6 +128,9 @@ FieldRenderer createFieldRenderer(Context& ctx, std::span<const FieldClump> clum
     if (scenery.nearWidth > 1024)
         throw Error("the near raster's workgroup width of " + std::to_string(scenery.nearWidth) +
                     " threads is above 1024");
+    if (scenery.nearTakeDraws < -1 || scenery.nearTakeDraws > 1)
+        throw Error("FieldScenery::nearTakeDraws is " + std::to_string(scenery.nearTakeDraws) +
+                    "; it must be -1 (the device's way), 0 (dealt in turn) or 1 (taken)");
     FieldRenderer r;
     try {
         fillFieldRenderer(ctx, r, clumps, instances, atlas, scenery);
@@ -153,12 +167,11 @@ void createPipelines(Context& ctx, FieldRenderer& r, const FieldScenery& scenery
                                               gpu::kFarInstancesPerGroup * farLanes, {1u}); // kLodView
     r.farResolve = createComputePipeline(ctx, "far_resolve.comp");
     r.farResolveLdrOnly = createComputePipeline(ctx, "far_resolve.comp", 0, 0, {0u}); // kStoreHdr false
-    const uint32_t nearWidth = scenery.nearWidth > 0                                      ? scenery.nearWidth
-                               : ctx.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? gpu::kNearCpuGroupSize
-                                                                                          : gpu::kNearGroupSize;
-    r.nearVertices = createComputePipeline(ctx, "near_vertices.comp", sizeof(glm::vec4), nearWidth);
-    r.nearRaster = createComputePipeline(ctx, "near_raster.comp", 0, nearWidth);
-    r.nearRasterLodView = createComputePipeline(ctx, "near_raster.comp", 0, nearWidth, {1u}); // kLodView
+    const uint32_t nearWidth = scenery.nearWidth > 0 ? scenery.nearWidth : nearWidthFor(ctx);
+    const uint32_t take = scenery.nearTakeDraws < 0 ? uint32_t(nearTakesDraws(ctx)) : uint32_t(scenery.nearTakeDraws);
+    r.nearVertices = createComputePipeline(ctx, "near_vertices.comp", sizeof(glm::vec4), nearWidth, {take});
+    r.nearRaster = createComputePipeline(ctx, "near_raster.comp", 0, nearWidth, {0u, take}); // kLodView, kTakeDraws
+    r.nearRasterLodView = createComputePipeline(ctx, "near_raster.comp", 0, nearWidth, {1u, take});
     const glm::vec2 wind = glm::normalize(scenery.windDirection);
     r.mirrorNormal = glm::vec4(-wind.y, 0.0f, wind.x, 0.0f);
     r.windAzimuth = std::atan2(wind.x, wind.y); // light/sh.h: from +z towards +x
@@ -291,6 +304,7 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.nearDispatch, nullptr, sizeof(gpu::GpuNearDispatch),
                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    deviceBuffer(r.nearTaken, nullptr, 2 * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.nearShaded, nullptr, r.nearRasterOn ? size_t(gpu::kNearMaxVertices) * 2 * sizeof(glm::uvec4) : 0,
                  texels);
     if (r.nearRasterOn)
@@ -380,7 +394,8 @@ void destroyFieldRenderer(Context& ctx, FieldRenderer& r) {
                       &r.transfer,      &r.vertexLight, &r.skyData,       &r.drawCommands,    &r.drawCommandTemplate,
                       &r.visibleList,   &r.stats,       &r.statsReadback, &r.terrainVertices, &r.terrainIndices,
                       &r.farSamples,    &r.farMotion,   &r.farList,       &r.farDispatch,     &r.groundTexelStart,
-                      &r.groundEntries, &r.nearList,    &r.nearDispatch,  &r.nearMeshes,      &r.nearShaded})
+                      &r.groundEntries, &r.nearList,    &r.nearDispatch,  &r.nearMeshes,      &r.nearShaded,
+                      &r.nearTaken})
         destroyBuffer(ctx, *b);
     destroyImage(ctx, r.atlas);
     destroyImage(ctx, r.groundLight);
@@ -708,13 +723,15 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
     // The previous frame's resolve read the visibility buffer (as texels).
     barrier(cmd, access::kComputeSampledRead, access::kTransferWrite);
     vkCmdFillBuffer(cmd, t.farVisibility.buffer, 0, VK_WHOLE_SIZE, gpu::kFarEmpty);
+    if (r.nearRasterOn) // the previous frame's near raster took its draws with these counters
+        vkCmdFillBuffer(cmd, r.nearTaken.buffer, 0, VK_WHOLE_SIZE, 0);
     barrier(cmd, access::kTransferWrite, access::kComputeReadWrite);
     if (r.nearRasterOn) {
         // Every vertex of the listed draws moved and lit once, then their triangles drawn.
         bindPipeline(ctx, cmd, r.nearVertices,
                      {r.frameUniforms, r.nearList, r.nearDispatch, r.drawInstances, r.nearMeshes,
                       Binding(r.lodVertexTexels), Binding(r.motionTexels), Binding(r.vertexLightTexels), r.nearShaded,
-                      Binding(r.motionRowTexels)});
+                      Binding(r.motionRowTexels), r.nearTaken});
         pushConstants(ctx, cmd, r.nearVertices, &r.mirrorNormal, sizeof(glm::vec4));
         vkCmdDispatchIndirect(cmd, r.nearDispatch.buffer, 0);
         markPass(timer, cmd, "nearVertices");
@@ -722,8 +739,8 @@ void recordFarPass(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const Re
         bindPipeline(ctx, cmd, lodViewShown(r) ? r.nearRasterLodView : r.nearRaster,
                      {r.frameUniforms, r.nearList, r.nearDispatch, r.drawInstances, r.clumps, r.nearMeshes,
                       Binding(r.indexTexels), Binding(r.nearShadedTexels),
-                      Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.atlasSampler),
-                      t.farVisibility});
+                      Binding(r.atlas.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, r.atlasSampler), t.farVisibility,
+                      r.nearTaken});
         vkCmdDispatchIndirect(cmd, r.nearDispatch.buffer, 0);
         markPass(timer, cmd, "nearRaster");
         if (!r.farField)

@@ -98,9 +98,13 @@ struct FieldScenery {
     // raster (near_raster.h) instead of the mesh pass (--near-raster); the CPU-driven path uploads
     // the same list (cpu_driver.h).
     bool nearRaster = false;
-    // The near raster's workgroup width (near_raster.h): 1 to 1024; 0: the device's (64 on a GPU, 16
-    // on a CPU). The picture is the same with any.
+    // The near raster's workgroup width (near_raster.h): 1 to 1024; 0: the device's (nearWidthFor).
+    // The picture is the same with any.
     uint32_t nearWidth = 0;
+    // How the near raster's workgroups share its draws out (near_raster.h): -1 the device's way
+    // (nearTakesDraws), 0 dealt in turn, 1 taken by each SIMD row from a counter. The picture is
+    // the same either way.
+    int nearTakeDraws = -1;
     sky::SkyDay sky; // SH order 3; at least one frame
 };
 
@@ -189,6 +193,7 @@ struct FieldRenderer {
     Buffer nearDispatch; // gpu::GpuNearDispatch
     Buffer nearMeshes;
     Buffer nearShaded;
+    Buffer nearTaken; // the two passes' counters of draws taken (near_raster.h), zeroed each frame
     VkBufferView indexTexels = VK_NULL_HANDLE; // the LOD meshes' indices, as the near raster reads them
     VkBufferView nearShadedTexels = VK_NULL_HANDLE;
     Buffer stats;
@@ -265,6 +270,13 @@ struct FieldStats {
     uint64_t trianglesDrawn = 0;          // instances + terrain + sky
     std::vector<uint32_t> visiblePerMesh; // per draw bucket; a crossfading instance counts in two
 };
+
+// The near raster's workgroup width on a device (FieldScenery::nearWidth = 0): gpu::kNearGroupSize
+// on a GPU, two SIMD rows (twice the subgroup size) on a CPU.
+uint32_t nearWidthFor(const Context& context);
+// Whether the near raster's SIMD rows take their draws from a counter on a device
+// (FieldScenery::nearTakeDraws = -1): on a CPU (near_raster.h).
+bool nearTakesDraws(const Context& context);
 
 // The splat pass's threads per far instance on a device (FieldScenery::farLanes = 0): 2 on a CPU
 // (lavapipe's SIMD halves), gpu::kFarMaxLanes on a GPU (measured in docs/BENCHMARKS.md).

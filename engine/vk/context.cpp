@@ -147,6 +147,14 @@ std::vector<std::string> missingRequirements(VkPhysicalDevice pd, const ContextO
             missing.push_back("feature shaderInt64");
         if (!f12.shaderBufferInt64Atomics)
             missing.push_back("feature shaderBufferInt64Atomics");
+        // The near raster's SIMD rows take their draws from a counter (near_raster.h).
+        VkPhysicalDeviceVulkan11Properties p11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES};
+        VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p11};
+        vkGetPhysicalDeviceProperties2(pd, &p2);
+        const VkSubgroupFeatureFlags ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
+        if ((p11.subgroupSupportedStages & VK_SHADER_STAGE_COMPUTE_BIT) == 0 ||
+            (p11.subgroupSupportedOperations & ops) != ops)
+            missing.push_back("basic and ballot subgroup operations in compute shaders");
     }
     if (!props.limits.timestampComputeAndGraphics)
         missing.push_back("limit timestampComputeAndGraphics");
@@ -331,8 +339,10 @@ void createContext(Context& ctx, const ContextOptions& options) {
     ctx.properties = props[static_cast<size_t>(chosen)];
     {
         VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-        VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+        VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES, &driver};
+        VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
         vkGetPhysicalDeviceProperties2(ctx.physicalDevice, &props2);
+        ctx.subgroupSize = subgroup.subgroupSize;
         if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) {
             std::string unsupported = lavapipeUnsupportedReason(lavapipeSettingsFromEnvironment());
             if (!unsupported.empty())

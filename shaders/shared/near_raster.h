@@ -64,12 +64,29 @@ inline int nearLowestBit(int x) {
 // and their steps fit in 32 bits.
 MEADOW_NEAR_CONST kNearMaxSpan = 1u << 14u;
 // Threads per listed draw, striding over its vertices and triangles: the workgroup's width, a
-// specialization constant per device (nearGroupSizeFor in field_renderer.cpp): 64 on a GPU, 16 on
-// a CPU, where smaller workgroups share the draws out more evenly between lavapipe's threads
-// (docs/BENCHMARKS.md, "The near raster"). The picture is the same at any width.
+// specialization constant per device (nearWidthFor in field_renderer.cpp): 64 on a GPU; on a CPU
+// two SIMD rows (twice the subgroup size: 16 lanes on lavapipe at 256 bits), each taking its own
+// draw (below). The picture is the same at any width.
 MEADOW_NEAR_CONST kNearGroupSize = 64u;
-MEADOW_NEAR_CONST kNearCpuGroupSize = 16u;
 MEADOW_NEAR_CONST kNearMaxGroups = 65535u;
+// How the two passes' workgroups share the draws out (FieldScenery::nearTakeDraws):
+// - Dealt in turn (a GPU's way, whose scheduler hands out workgroups as its units come free): each
+//   workgroup takes slot g, then g + gl_NumWorkGroups, ... of the list in work_order.h's spread
+//   order, all its threads on one draw.
+// - Taken (a CPU's way): each SIMD row (subgroup) takes the next slot from a counter (NearTaken,
+//   zeroed each frame), one draw per row. Lavapipe (Mesa 22.3, lp_cs_tpool.c) hands each of its
+//   threads a fixed half of a dispatch's workgroups, so with the draws dealt the pass ends when the
+//   costlier half does: in the low view a core idled for 3-16 ms of the near raster's 35-45
+//   (docs/BENCHMARKS.md, "The near raster's draws taken from a counter"). With two rows per
+//   workgroup and a workgroup per draw there are twice as many rows as draws, so either thread can
+//   take any share of them; a row that finds none left passes once with nothing to draw.
+// A row takes one draw, not draws until none are left: llvmpipe (gallivm's
+// LP_MAX_TGSI_LOOP_ITERATIONS) ends every loop of a shader invocation, silently, once all its loops
+// together have run 65,535 passes, and a row that took draws in a loop lost those it took after
+// that (20 of 565 in the default view, in a probe). One draw stays under it: the largest near draw
+// from a camera among the clumps ran about 36,000 passes with some lane in them.
+MEADOW_NEAR_CONST kNearTakenVertices = 0u; // NearTaken's counters
+MEADOW_NEAR_CONST kNearTakenRaster = 1u;
 // The cull pass hands an instance's LOD draws to the near raster only below this projected radius
 // (px), and only when its bounding sphere lies wholly in front of the near plane, so that every
 // vertex lies in front of the eye and every triangle's box within kNearMaxSpan at its instance's

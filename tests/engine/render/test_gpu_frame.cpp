@@ -18,6 +18,7 @@
 #include "vk/context.h"
 #include "vk/memory.h"
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -145,7 +146,9 @@ struct PathRun {
     std::vector<uint8_t> hdr; // the HDR image's bytes, whatever the targets say it holds
     FieldStats stats;
     std::vector<gpu::GpuMotionState> states;
-    uint64_t lastFrameUpload = 0; // host bytes written for the last frame
+    uint64_t lastFrameUpload = 0;        // host bytes written for the last frame
+    std::array<uint32_t, 2> nearTaken{}; // the near raster's counters of draws taken (near_raster.h)
+    uint32_t nearListed = 0;             // and the length of its list, in the last frame
 };
 
 PathRun drawOnPath(Context& context, const ComparisonField& field, bool cpuDriven, int frames,
@@ -168,6 +171,12 @@ PathRun drawOnPath(Context& context, const ComparisonField& field, bool cpuDrive
     run.hdr = readImageBytes(context, offscreen.targets.hdr, VK_IMAGE_ASPECT_COLOR_BIT, 8, VK_IMAGE_LAYOUT_GENERAL,
                              access::kComputeReadWrite);
     run.stats = readFieldStats(renderer);
+    if (renderer.nearRasterOn) {
+        readbackBuffer(context, renderer.nearTaken, run.nearTaken.data(), sizeof(run.nearTaken));
+        gpu::GpuNearDispatch dispatch{};
+        readbackBuffer(context, renderer.nearDispatch, &dispatch, sizeof dispatch);
+        run.nearListed = dispatch.count;
+    }
     run.states.resize(field.instances.size());
     if (cpuDriven)
         run.states = cpuDriverStates(*renderer.cpuDriver);
@@ -682,20 +691,44 @@ TEST_F(Gpu, CpuDrivenPathDrawsTheSameNearRaster) {
     EXPECT_TRUE(gpuPath.picture == cpuPath.picture);
 }
 
-// The near raster's workgroup width (16 on lavapipe, 64 on a GPU) only shares the draws and their
-// triangles out differently: the same picture, byte for byte.
+// The near raster's workgroup width (two SIMD rows on lavapipe, 64 on a GPU) only shares the draws
+// and their triangles out differently: the same picture, byte for byte.
 TEST_F(Gpu, TheNearRasterDrawsTheSamePictureAtAnyWidth) {
     ComparisonField field = nearField(3.0f);
-    field.scenery.nearWidth = gpu::kNearCpuGroupSize;
+    field.scenery.nearWidth = nearWidthFor(*context);
     const PathRun narrow = drawOnPath(*context, field, false, 3);
     EXPECT_GT(narrow.stats.nearInstances, 200u);
-    for (uint32_t width : {1u, gpu::kNearGroupSize, 256u}) {
+    for (uint32_t width : {1u, 3u, gpu::kNearGroupSize, 256u}) {
         field.scenery.nearWidth = width;
         const PathRun other = drawOnPath(*context, field, false, 3);
         EXPECT_EQ(other.stats.nearTriangles, narrow.stats.nearTriangles) << width;
         EXPECT_TRUE(other.picture == narrow.picture) << width << " threads";
     }
     field.scenery.nearWidth = 2048;
+    EXPECT_THROW(drawOnPath(*context, field, false, 1), Error);
+}
+
+// The near raster's draws dealt to the workgroups in turn, or taken by each SIMD row from a counter
+// (near_raster.h; lavapipe's way), at widths of whole and partial rows: the same picture, byte for
+// byte. Taken, every pass handed out every draw: each counter ends at or past the list's length (a
+// row that finds none left still counts its try).
+TEST_F(Gpu, TheNearRasterDrawsTheSamePictureWhetherItsDrawsAreDealtOrTaken) {
+    ComparisonField field = nearField(3.0f);
+    field.scenery.nearTakeDraws = 0;
+    const PathRun dealt = drawOnPath(*context, field, false, 3);
+    EXPECT_GT(dealt.stats.nearInstances, 200u);
+    EXPECT_EQ(dealt.nearTaken, (std::array<uint32_t, 2>{0u, 0u}));
+    field.scenery.nearTakeDraws = 1;
+    for (uint32_t width : {0u, 1u, 3u, gpu::kNearGroupSize}) {
+        field.scenery.nearWidth = width;
+        const PathRun taken = drawOnPath(*context, field, false, 3);
+        EXPECT_EQ(taken.stats.nearTriangles, dealt.stats.nearTriangles) << width;
+        EXPECT_TRUE(taken.picture == dealt.picture) << width << " threads";
+        EXPECT_EQ(taken.nearListed, dealt.nearListed) << width;
+        for (uint32_t counter : taken.nearTaken)
+            EXPECT_GE(counter, taken.nearListed) << width;
+    }
+    field.scenery.nearTakeDraws = 2;
     EXPECT_THROW(drawOnPath(*context, field, false, 1), Error);
 }
 

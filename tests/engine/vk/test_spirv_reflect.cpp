@@ -28,9 +28,9 @@ TEST(SpirvReflect, NearRasterPassesLayout) {
     EXPECT_EQ(vertices.localSize[0], gpu::kNearGroupSize);
     EXPECT_TRUE(vertices.localSizeXSpecialized); // the width is the device's
     // Frame; near list, dispatch, draw records, near meshes; LOD vertices, motion, light as texel
-    // buffers; the shaded vertices; the motion's basis rows as a texel buffer. The mirror plane as a
-    // push constant.
-    ASSERT_EQ(vertices.bindings.size(), 10u);
+    // buffers; the shaded vertices; the motion's basis rows as a texel buffer; the counters of draws
+    // taken. The mirror plane as a push constant.
+    ASSERT_EQ(vertices.bindings.size(), 11u);
     EXPECT_EQ(vertices.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     for (uint32_t b = 1; b <= 4; ++b)
         EXPECT_EQ(vertices.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
@@ -38,13 +38,14 @@ TEST(SpirvReflect, NearRasterPassesLayout) {
         EXPECT_EQ(vertices.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << b;
     EXPECT_EQ(vertices.bindings.at(8), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     EXPECT_EQ(vertices.bindings.at(9), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
+    EXPECT_EQ(vertices.bindings.at(10), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     EXPECT_EQ(vertices.pushConstantBytes, 16u);
     ShaderReflection raster = reflectShader(findShader("near_raster.comp"), "near_raster.comp");
     EXPECT_EQ(raster.localSize[0], gpu::kNearGroupSize);
     EXPECT_TRUE(raster.localSizeXSpecialized);
     // Frame; near list, dispatch, draw records, clumps, near meshes; indices and shaded vertices as
-    // texel buffers; the atlas; the visibility buffer.
-    ASSERT_EQ(raster.bindings.size(), 10u);
+    // texel buffers; the atlas; the visibility buffer; the counters of draws taken.
+    ASSERT_EQ(raster.bindings.size(), 11u);
     EXPECT_EQ(raster.bindings.at(0), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
     for (uint32_t b = 1; b <= 5; ++b)
         EXPECT_EQ(raster.bindings.at(b), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) << b;
@@ -52,6 +53,7 @@ TEST(SpirvReflect, NearRasterPassesLayout) {
         EXPECT_EQ(raster.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << b;
     EXPECT_EQ(raster.bindings.at(8), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     EXPECT_EQ(raster.bindings.at(9), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    EXPECT_EQ(raster.bindings.at(10), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     EXPECT_EQ(raster.pushConstantBytes, 0u);
 }
 
