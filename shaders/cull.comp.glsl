@@ -38,17 +38,26 @@ void append(uint bucket, uint entry) {
 }
 
 // An instance's draw of the mesh in bucket `bucket`: by the near raster when the instance is given a
-// subpixel grid (sub > 0), with one more workgroup for it, and there is room for its vertices in
-// the near raster's vertex buffer; otherwise by the draw pass.
+// subpixel grid (sub > 0) and there is room for its vertices in the near raster's vertex buffer,
+// with one more workgroup for each of its entries (a large draw has kNearDrawParts); otherwise by
+// the draw pass.
 void appendLod(uint bucket, uint entry, int sub) {
     if (sub > 0) {
         uvec4 mesh = nearMeshes[bucket];
         uint start = atomicAdd(nearDispatch.vertices, mesh.y);
         if (start + mesh.y <= kNearMaxVertices && start + mesh.y >= start) {
-            uint slot = atomicAdd(nearDispatch.count, 1u);
-            nearList[slot] = uvec4(entry, bucket, start, uint(sub));
-            if (slot < kNearMaxGroups)
-                atomicAdd(nearDispatch.groupsX, 1u);
+            // A large draw in parts, while the list has room for them (near_raster.h).
+            uint parts = 1u;
+            if (nearSplitsDraw(sub) && atomicAdd(nearDispatch.split, 1u) < kNearMaxSplitDraws)
+                parts = kNearDrawParts;
+            uint slot = atomicAdd(nearDispatch.count, parts);
+            uint part = 0u;
+            do
+                nearList[slot + part] = uvec4(entry, bucket, start, nearListedWord(sub, part, parts));
+            while (++part < parts);
+            uint groups = min(slot + parts, kNearMaxGroups) - min(slot, kNearMaxGroups);
+            if (groups > 0u)
+                atomicAdd(nearDispatch.groupsX, groups);
             atomicAdd(stats.nearInstances, 1u);
             atomicAdd(stats.nearTriangles, mesh.w / 3u);
             return;

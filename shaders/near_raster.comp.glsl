@@ -103,14 +103,15 @@ void main() {
         bool fading = inst.pose.w > 0.0;
         bool isFadeLod = (entry & kLodFadeEntryBit) != 0u;
         uint ditherLevel = lodDitherLevel(inst.pose.w);
-        uint t = share.lane;
+        uvec2 range = nearPartRange(listed.w, mesh.w / 3u); // the listed part's triangles
+        uint t = range.x + share.lane;
         do {
-            bool listedTriangle = 3u * t < mesh.w;
+            bool listedTriangle = t < range.y;
             uint first = mesh.z + 3u * min(t, mesh.w / 3u - 1u);
             NearVertex v0 = readVertex(listed.z + texelFetch(indices, int(first)).r);
             NearVertex v1 = readVertex(listed.z + texelFetch(indices, int(first + 1u)).r);
             NearVertex v2 = readVertex(listed.z + texelFetch(indices, int(first + 2u)).r);
-            NearTriangle tri = nearSetUp(v0.pixel, v1.pixel, v2.pixel, size.x, size.y, int(listed.w));
+            NearTriangle tri = nearSetUp(v0.pixel, v1.pixel, v2.pixel, size.x, size.y, nearListedSub(listed.w));
             if (!tri.drawn || !listedTriangle)
                 continue;
             if (tri.swapped) {
@@ -171,6 +172,6 @@ void main() {
                 }
                 nearNextCoveredRow(tri, row, col, hi, e0, e1, e2);
             } while (col <= hi);
-        } while (3u * (t += share.width) < mesh.w);
+        } while ((t += share.width) < range.y);
     } while ((item = nearShareNext(kTakeDraws, kNearTakenRaster, share, total)) < total);
 }

@@ -49,20 +49,21 @@ void main() {
         uvec4 listed = nearList[workEntry(item, total, stride)];
         GpuDrawInstance inst = drawInstances[listed.x & kLodEntryIndexMask];
         uvec4 mesh = nearMeshes[listed.y];
-        uint v = share.lane;
+        uvec2 range = nearPartRange(listed.w, mesh.y); // the listed part's vertices
+        uint v = range.x + share.lane;
         do {
             ClumpVertex o = shadeClumpVertex(mesh.x + min(v, mesh.y - 1u), inst, mirrorNormal.xz);
             // Every listed instance lies in front of the near plane (the cull pass's test): w > 0.
             float invW = 1.0 / o.clip.w;
             vec2 pixel = (o.clip.xy * invW * 0.5 + 0.5) * size;
             uint slot = 2u * (listed.z + v);
-            if (v < mesh.y) {
+            if (v < range.y) {
                 nearVertices[slot] = uvec4(floatBitsToUint(pixel.x), floatBitsToUint(pixel.y), floatBitsToUint(invW),
                                            floatBitsToUint(o.uvFacing.z));
                 nearVertices[slot + 1u] = uvec4(packRgb9e5(o.front.r, o.front.g, o.front.b),
                                                 packRgb9e5(o.back.r, o.back.g, o.back.b),
                                                 floatBitsToUint(o.uvFacing.x), floatBitsToUint(o.uvFacing.y));
             }
-        } while ((v += share.width) < mesh.y);
+        } while ((v += share.width) < range.y);
     } while ((item = nearShareNext(kTakeDraws, kNearTakenVertices, share, total)) < total);
 }

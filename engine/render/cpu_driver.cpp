@@ -68,7 +68,7 @@ void enableCpuDriver(Context& ctx, FieldRenderer& r, std::span<const FieldClump>
     d->nearMeshes.resize(r.meshCount);
     readbackBuffer(ctx, r.nearMeshes, d->nearMeshes.data(), d->nearMeshes.size() * sizeof(glm::uvec4));
     d->nearListAt = d->farDispatchAt + sizeof(gpu::GpuFarDispatch);
-    d->nearDispatchAt = d->nearListAt + (r.nearRasterOn ? instances.size() * 2 * sizeof(glm::uvec4) : 0);
+    d->nearDispatchAt = d->nearListAt + (r.nearRasterOn ? nearListCapacity(instances.size()) * sizeof(glm::uvec4) : 0);
     d->staging = createBuffer(ctx, d->nearDispatchAt + sizeof(gpu::GpuNearDispatch), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                               MemoryUse::Upload);
     r.cpuDriver = std::move(d);
@@ -148,18 +148,22 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
     // The near raster's list, as cull.comp's appendLod writes it: the entry, its bucket, its vertices'
     // place and its subpixel grid, or the draw pass when the near raster does not take it.
     d.nearEntries = 0;
-    uint32_t nearVertices = 0;
+    uint32_t nearVertices = 0, nearSplit = 0;
     auto appendLod = [&](uint32_t bucket, uint32_t entry, int sub) {
         if (sub > 0) {
             const glm::uvec4 mesh = d.nearMeshes[bucket];
             const uint32_t start = nearVertices;
             nearVertices += mesh.y;
             if (uint64_t(start) + mesh.y <= gpu::kNearMaxVertices) {
-                const glm::uvec4 item(entry, bucket, start, uint32_t(sub));
-                std::memcpy(
-                    hostWriteAt(ctx, d.staging, d.nearListAt + size_t(d.nearEntries) * sizeof item, sizeof item), &item,
-                    sizeof item);
-                ++d.nearEntries;
+                const uint32_t parts =
+                    gpu::nearSplitsDraw(sub) && nearSplit++ < gpu::kNearMaxSplitDraws ? gpu::kNearDrawParts : 1u;
+                for (uint32_t part = 0; part < parts; ++part) {
+                    const glm::uvec4 item(entry, bucket, start, gpu::nearListedWord(sub, part, parts));
+                    std::memcpy(
+                        hostWriteAt(ctx, d.staging, d.nearListAt + size_t(d.nearEntries) * sizeof item, sizeof item),
+                        &item, sizeof item);
+                    ++d.nearEntries;
+                }
                 ++stats.nearInstances;
                 stats.nearTriangles += mesh.w / 3u;
                 return;
@@ -199,7 +203,7 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
     const gpu::GpuFarDispatch dispatch{std::min(farGroups, gpu::kFarMaxGroups), 1u, 1u, d.farEntries};
     std::memcpy(hostWriteAt(ctx, d.staging, d.farDispatchAt, sizeof dispatch), &dispatch, sizeof dispatch);
     const gpu::GpuNearDispatch nearDispatch{
-        std::min(d.nearEntries, gpu::kNearMaxGroups), 1u, 1u, d.nearEntries, nearVertices, 0u, 0u, 0u};
+        std::min(d.nearEntries, gpu::kNearMaxGroups), 1u, 1u, d.nearEntries, nearVertices, nearSplit, 0u, 0u};
     std::memcpy(hostWriteAt(ctx, d.staging, d.nearDispatchAt, sizeof nearDispatch), &nearDispatch, sizeof nearDispatch);
     d.visibleCopies.clear();
     for (size_t m = 0; m < d.drawTemplate.size(); ++m)

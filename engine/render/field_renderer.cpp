@@ -83,6 +83,11 @@ uint32_t nearWidthFor(const Context& ctx) {
     return std::clamp(2 * ctx.subgroupSize, 2u, 1024u);
 }
 
+size_t nearListCapacity(size_t instances) {
+    // Two draws an instance (a crossfade's), and the parts of the draws listed in parts.
+    return instances * 2 + size_t(gpu::kNearMaxSplitDraws) * (gpu::kNearDrawParts - 1);
+}
+
 bool nearTakesDraws(const Context& ctx) {
     return ctx.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
@@ -300,7 +305,7 @@ void createBuffers(Context& ctx, FieldRenderer& r, const FieldPacking& p, std::s
                                    p.draws[b].indexCount);
     deviceBuffer(r.nearMeshes, nearMeshes.data(), nearMeshes.size() * sizeof(glm::uvec4),
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT); // read back by the CPU-driven path
-    deviceBuffer(r.nearList, nullptr, r.nearRasterOn ? instances.size() * 2 * sizeof(glm::uvec4) : 0,
+    deviceBuffer(r.nearList, nullptr, r.nearRasterOn ? nearListCapacity(instances.size()) * sizeof(glm::uvec4) : 0,
                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     deviceBuffer(r.nearDispatch, nullptr, sizeof(gpu::GpuNearDispatch),
                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
@@ -562,7 +567,8 @@ void recordReset(FieldRenderer& r, VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, r.farDispatch.buffer, 3 * sizeof(uint32_t), sizeof(uint32_t), 0);
         vkCmdFillBuffer(cmd, r.nearDispatch.buffer, 0, sizeof(uint32_t), 0);
         vkCmdFillBuffer(cmd, r.nearDispatch.buffer, sizeof(uint32_t), 2 * sizeof(uint32_t), 1);
-        vkCmdFillBuffer(cmd, r.nearDispatch.buffer, 3 * sizeof(uint32_t), 2 * sizeof(uint32_t), 0);
+        vkCmdFillBuffer(cmd, r.nearDispatch.buffer, 3 * sizeof(uint32_t), 3 * sizeof(uint32_t),
+                        0); // count, vertices, split
     }
 }
 

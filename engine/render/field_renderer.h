@@ -274,6 +274,9 @@ struct FieldStats {
 // The near raster's workgroup width on a device (FieldScenery::nearWidth = 0): gpu::kNearGroupSize
 // on a GPU, two SIMD rows (twice the subgroup size) on a CPU.
 uint32_t nearWidthFor(const Context& context);
+// The entries the near list holds for a field of `instances` (near_raster.h: two draws an instance,
+// and the parts of up to gpu::kNearMaxSplitDraws draws listed in parts).
+size_t nearListCapacity(size_t instances);
 // Whether the near raster's SIMD rows take their draws from a counter on a device
 // (FieldScenery::nearTakeDraws = -1): on a CPU (near_raster.h).
 bool nearTakesDraws(const Context& context);

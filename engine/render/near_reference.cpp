@@ -105,12 +105,14 @@ std::vector<uint64_t> nearRasterReference(const NearRasterInputs& in) {
         std::vector<Shaded> shaded(mesh.y);
         for (uint32_t v = 0; v < mesh.y; ++v)
             shaded[v] = shadeVertex(in, mesh.x + v, inst);
-        for (uint32_t t = 0; 3 * t < mesh.w; ++t) {
+        const glm::uvec2 part = gpu::nearPartRange(listed.w, mesh.w / 3); // the listed part's triangles
+        for (uint32_t t = part.x; t < part.y; ++t) {
             const uint32_t first = mesh.z + 3 * t;
             Shaded v0 = at(shaded, at(in.indices, first, "index"), "mesh vertex");
             Shaded v1 = at(shaded, at(in.indices, first + 1, "index"), "mesh vertex");
             Shaded v2 = at(shaded, at(in.indices, first + 2, "index"), "mesh vertex");
-            const gpu::NearTriangle tri = gpu::nearSetUp(v0.pixel, v1.pixel, v2.pixel, width, height, int(listed.w));
+            const gpu::NearTriangle tri =
+                gpu::nearSetUp(v0.pixel, v1.pixel, v2.pixel, width, height, gpu::nearListedSub(listed.w));
             if (!tri.drawn)
                 continue;
             if (tri.swapped)

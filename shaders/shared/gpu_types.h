@@ -218,7 +218,8 @@ struct GpuNearDispatch {
     uint groupsZ;
     uint count;    // LOD draws listed this frame
     uint vertices; // vertices asked for (the listed draws' and any that did not fit)
-    uint pad0, pad1, pad2;
+    uint split;    // draws listed in parts, and any that were listed whole past the cap (near_raster.h)
+    uint pad1, pad2;
 };
 #ifdef __cplusplus
 } // namespace meadow::gpu

@@ -31,6 +31,7 @@
 #include <cmath>
 namespace meadow::gpu {
 using vec2 = glm::vec2;
+using uvec2 = glm::uvec2;
 #define MEADOW_NEAR_CONST inline constexpr uint
 #define MEADOW_NEAR_FCONST inline constexpr float
 #define MEADOW_NEAR_FN inline
@@ -80,13 +81,44 @@ MEADOW_NEAR_CONST kNearMaxGroups = 65535u;
 //   (docs/BENCHMARKS.md, "The near raster's draws taken from a counter"). With two rows per
 //   workgroup and a workgroup per draw there are twice as many rows as draws, so either thread can
 //   take any share of them; a row that finds none left passes once with nothing to draw.
-// A row takes one draw, not draws until none are left: llvmpipe (gallivm's
-// LP_MAX_TGSI_LOOP_ITERATIONS) ends every loop of a shader invocation, silently, once all its loops
-// together have run 65,535 passes, and a row that took draws in a loop lost those it took after
-// that (20 of 565 in the default view, in a probe). One draw stays under it: the largest near draw
-// from a camera among the clumps ran about 36,000 passes with some lane in them.
+// A row takes one draw, not draws until none are left, and a large draw comes in parts (below):
+// llvmpipe (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS) ends every loop of a shader invocation (a SIMD
+// row), silently, once all its loops together have run 65,535 passes. Rows that took draws in a
+// loop lost those they took after that (20 of 565 in the default view, in a probe), and a whole LOD
+// 0 draw close to the eye on one row of 4 lanes (128-bit vectors) lost pixels (docs/BENCHMARKS.md,
+// "The near raster's draws taken from a counter").
 MEADOW_NEAR_CONST kNearTakenVertices = 0u; // NearTaken's counters
 MEADOW_NEAR_CONST kNearTakenRaster = 1u;
+// A draw of an instance over 48 px (a grid of 16 or 8 to a pixel: nearSubpixelFor) is listed as
+// kNearDrawParts entries, each with a run of the draw's vertices and triangles (nearPartRange), so
+// that a SIMD row that takes one has a quarter of the pixels to cover: over 48 px a draw's
+// triangles cover up to 30 times the pixels they do below it, more than a row of 4 lanes loops
+// over in 65,535 passes. Up to kNearMaxSplitDraws draws a frame; past them a draw is listed whole
+// (the near list's length is bounded: field_renderer.cpp). Below 48 px a draw's pixels are at most
+// about 7,000 times its overdraw, a tenth of the limit at 4 lanes. On a GPU the parts are drawn by
+// workgroups of their own, as whole draws are.
+MEADOW_NEAR_CONST kNearDrawParts = 4u;
+MEADOW_NEAR_CONST kNearMaxSplitDraws = 4096u;
+MEADOW_NEAR_FN bool nearSplitsDraw(int sub) {
+    return sub <= 16;
+}
+// A listed draw's fourth word: its subpixel grid (low 16 bits), which of its parts it is (8 bits)
+// and how many parts it has (8 bits; 1: the whole draw).
+MEADOW_NEAR_FN uint nearListedWord(int sub, uint part, uint parts) {
+    return uint(sub) | part << 16u | parts << 24u;
+}
+MEADOW_NEAR_FN int nearListedSub(uint word) {
+    return int(word & 0xffffu);
+}
+// The run [x, y) of a draw's `count` vertices or triangles that the listed part (`word`) covers:
+// parts of count / parts, or one more; the parts together cover the draw once. A word of 0 (what
+// llvmpipe's lanes past a workgroup's last thread load) gives [0, count), not a division by zero,
+// whose quotient kept such lanes' loops running to llvmpipe's limit.
+MEADOW_NEAR_FN uvec2 nearPartRange(uint word, uint count) {
+    uint part = (word >> 16u) & 0xffu, parts = word >> 24u;
+    parts += parts == 0u ? 1u : 0u;
+    return uvec2(part * count / parts, (part + 1u) * count / parts);
+}
 // The cull pass hands an instance's LOD draws to the near raster only below this projected radius
 // (px), and only when its bounding sphere lies wholly in front of the near plane, so that every
 // vertex lies in front of the eye and every triangle's box within kNearMaxSpan at its instance's

@@ -149,6 +149,7 @@ struct PathRun {
     uint64_t lastFrameUpload = 0;        // host bytes written for the last frame
     std::array<uint32_t, 2> nearTaken{}; // the near raster's counters of draws taken (near_raster.h)
     uint32_t nearListed = 0;             // and the length of its list, in the last frame
+    std::vector<uint64_t> visibility;    // the visibility buffer's words (depth key, radiance), with the near raster
 };
 
 PathRun drawOnPath(Context& context, const ComparisonField& field, bool cpuDriven, int frames,
@@ -176,6 +177,7 @@ PathRun drawOnPath(Context& context, const ComparisonField& field, bool cpuDrive
         gpu::GpuNearDispatch dispatch{};
         readbackBuffer(context, renderer.nearDispatch, &dispatch, sizeof dispatch);
         run.nearListed = dispatch.count;
+        run.visibility = readFarVisibility(context, offscreen.targets);
     }
     run.states.resize(field.instances.size());
     if (cpuDriven)
@@ -666,7 +668,9 @@ TEST_F(Gpu, NearRasterMatchesCpuReference) {
     destroyFieldRenderer(*context, renderer);
 
     EXPECT_GT(dispatch.count, 200u);
-    EXPECT_EQ(stats.nearInstances, dispatch.count);
+    // Each draw listed once, or in kNearDrawParts parts when large (near_raster.h).
+    EXPECT_EQ(dispatch.count,
+              stats.nearInstances + (gpu::kNearDrawParts - 1) * std::min(dispatch.split, gpu::kNearMaxSplitDraws));
     EXPECT_GT(stats.nearTriangles, 10000u);
     ASSERT_EQ(gpuWords.size(), cpuWords.size());
     const WordComparison words = compareWords(gpuWords, cpuWords);
@@ -730,6 +734,54 @@ TEST_F(Gpu, TheNearRasterDrawsTheSamePictureWhetherItsDrawsAreDealtOrTaken) {
     }
     field.scenery.nearTakeDraws = 2;
     EXPECT_THROW(drawOnPath(*context, field, false, 1), Error);
+}
+
+// A draw of many large triangles close to the eye, listed in parts (near_raster.h): llvmpipe ends a
+// SIMD row's loops, silently, after 65,535 passes in all, and a row of 4 or 8 lanes that took this
+// draw whole ran past that and lost its last triangles, the nearest (so did every row of 8 lanes
+// with the draw dealt to workgroups of 8). Listed in kNearDrawParts parts, taken by rows or dealt
+// to workgroups of 16 threads, and dealt to 256 threads at once (far under the limit), the
+// visibility buffer is the same word for word: the same triangles won every pixel, at the same
+// depth.
+TEST_F(Gpu, TheNearRasterDrawsALargeDrawWholeWhenItsDrawsAreTaken) {
+    constexpr uint32_t kQuads = 60;
+    Mesh stack; // kQuads squares facing -z, each nearer the eye than the one before, all of one clump
+    for (uint32_t q = 0; q < kQuads; ++q) {
+        const float z = -0.01f * float(q);
+        const uint32_t base = uint32_t(stack.vertices.size());
+        for (int corner = 0; corner < 4; ++corner) {
+            const float u = float(corner & 1), v = float(corner >> 1);
+            stack.vertices.push_back({glm::vec4(u * 1.6f - 0.8f, v * 1.6f, z, u), glm::vec4(0.0f, 0.0f, -1.0f, v)});
+        }
+        stack.indices.insert(stack.indices.end(), {base, base + 2, base + 1, base + 1, base + 2, base + 3});
+    }
+    stack.fitBoundingSphere();
+    ComparisonField field = nearField(0.3f);
+    field.clumps = {staticFieldClump(stack, kLodCount)};
+    giveFarSamples(field.clumps[0]);
+    gpu::GpuInstance one{};
+    one.positionScale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    one.boundingRadius = stack.boundingRadius;
+    field.instances = {one};
+    field.camera.eye = glm::vec3(0.0f, 0.8f, -2.3f);
+    field.camera.target = glm::vec3(0.0f, 0.8f, 0.0f);
+    field.scenery.nearTakeDraws = 0;
+    field.scenery.nearWidth = 16;
+    const PathRun dealt = drawOnPath(*context, field, false, 1);
+    ASSERT_EQ(dealt.stats.nearInstances, 1u); // the whole stack, in the near raster
+    EXPECT_EQ(dealt.stats.nearTriangles, 2 * kQuads);
+    EXPECT_EQ(dealt.nearListed, gpu::kNearDrawParts); // over 48 px: in parts
+    size_t covered = 0;
+    for (uint64_t word : dealt.visibility)
+        covered += word != ~uint64_t(0);
+    EXPECT_GT(covered, dealt.visibility.size() / 4); // a large draw: a quarter of the picture or more
+    field.scenery.nearWidth = 256;
+    EXPECT_TRUE(drawOnPath(*context, field, false, 1).visibility == dealt.visibility) << "dealt to 256 threads";
+    field.scenery.nearTakeDraws = 1;
+    field.scenery.nearWidth = 0;
+    const PathRun taken = drawOnPath(*context, field, false, 1);
+    EXPECT_TRUE(taken.visibility == dealt.visibility) << "taken in parts";
+    EXPECT_TRUE(taken.picture == dealt.picture);
 }
 
 // The near raster draws what the mesh pass draws for the same LODs: the same picture but for the
