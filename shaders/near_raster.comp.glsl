@@ -3,10 +3,11 @@
 // triangle in compute into the far field's visibility buffer, instead of through the graphics
 // pipeline (on lavapipe, its one front-end thread; on a GPU, its few geometry units). Each
 // workgroup (on a GPU) or SIMD row (on a CPU) takes a listed draw (near_raster.h: dealt in turn or
-// taken from a counter; slots take draws in work_order.h's spread order), its threads striding
-// over the LOD mesh's triangles, whose vertices near_vertices.comp moved and lit. Each covered pixel is lit as instance.frag lights it (the crossfade dither, the atlas's alpha
-// test at the mip of the triangle's texel density, the side the eye sees) and merged with a 64-bit
-// atomicMin of (depth key, RGB9E5 radiance), as the splat pass merges samples. far_resolve.comp
+// taken from a counter; slots take draws in work_order.h's spread order; a large draw is listed in
+// parts, nearPartRange), its threads striding over the LOD mesh's triangles (the part's), whose
+// vertices near_vertices.comp moved and lit. Each covered pixel is lit as instance.frag lights it
+// (the crossfade dither, the atlas's alpha test at the mip of the triangle's texel density, the
+// side the eye sees) and merged with a 64-bit atomicMin of (depth key, RGB9E5 radiance), as the splat pass merges samples. far_resolve.comp
 // then shows the winners that are nearer than the meshes.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require

@@ -3,8 +3,9 @@
 // once, as instance.vert does it, into the near raster's vertex buffer at the draw's range, which
 // the cull pass allotted. Each workgroup (on a GPU) or SIMD row (on a CPU) takes a listed draw
 // (near_raster.h: dealt in turn or taken from a counter; slots take draws in work_order.h's spread
-// order), its threads striding over the LOD mesh's vertices. near_raster.comp then reads three of them per triangle:
-// shaded once rather than once per triangle that uses them.
+// order; a large draw is listed in parts, nearPartRange), its threads striding over the LOD mesh's
+// vertices (the part's). near_raster.comp then reads three of them per triangle: shaded once
+// rather than once per triangle that uses them.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_KHR_shader_subgroup_ballot : require
