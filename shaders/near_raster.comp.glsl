@@ -7,8 +7,9 @@
 // parts, nearPartRange), its threads striding over the LOD mesh's triangles (the part's), whose
 // vertices near_vertices.comp moved and lit. Each covered pixel is lit as instance.frag lights it
 // (the crossfade dither, the atlas's alpha test at the mip of the triangle's texel density, the
-// side the eye sees) and merged with a 64-bit atomicMin of (depth key, RGB9E5 radiance), as the splat pass merges samples. far_resolve.comp
-// then shows the winners that are nearer than the meshes.
+// side the eye sees) and merged with a 64-bit atomicMin of (depth key, RGB9E5 radiance), as the
+// splat pass merges samples. far_resolve.comp then shows the winners that are nearer than the
+// meshes.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_KHR_shader_subgroup_ballot : require

@@ -339,10 +339,10 @@ void createContext(Context& ctx, const ContextOptions& options) {
     ctx.properties = props[static_cast<size_t>(chosen)];
     {
         VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-        VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES, &driver};
-        VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
+        VkPhysicalDeviceVulkan11Properties p11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES, &driver};
+        VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p11};
         vkGetPhysicalDeviceProperties2(ctx.physicalDevice, &props2);
-        ctx.subgroupSize = subgroup.subgroupSize;
+        ctx.subgroupSize = p11.subgroupSize; // the same structure missingRequirements checks
         if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) {
             std::string unsupported = lavapipeUnsupportedReason(lavapipeSettingsFromEnvironment());
             if (!unsupported.empty())

@@ -50,7 +50,7 @@ struct Context {
     VkPhysicalDeviceProperties properties{};
     VkPhysicalDeviceMemoryProperties memoryProperties{};
     uint32_t timestampValidBits = 0;
-    uint32_t subgroupSize = 0; // VkPhysicalDeviceSubgroupProperties: lavapipe's SIMD width in lanes
+    uint32_t subgroupSize = 0; // VkPhysicalDeviceVulkan11Properties: lavapipe's SIMD width in lanes
     bool validationEnabled = false;
     std::unique_ptr<ValidationCounter> validation;
     std::unique_ptr<MemoryAllocator> memory;
