@@ -9,6 +9,7 @@ MEADOW_FRAME_BLOCK(0, 0)
 layout(set = 0, binding = 1) uniform sampler2D skyImage;
 
 layout(location = 0) in vec2 inClip;
+layout(location = 1) flat in float inSunCosine; // cos(frame.sunColor.w), from sky.vert
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -22,7 +23,7 @@ void main() {
         u = u < 0.0 ? u + 1.0 : u;
         float v = acos(clamp(dir.y, -1.0, 1.0)) / kPi;
         radiance = textureLod(skyImage, vec2(u, v), 0.0).rgb;
-        if (dot(dir, frame.sunDirection.xyz) > cos(frame.sunColor.w))
+        if (dot(dir, frame.sunDirection.xyz) > inSunCosine)
             radiance += frame.sunColor.rgb;
     }
     outColor = vec4(radiance, 1.0);
