@@ -6,7 +6,7 @@
 #   scripts/bench-views.sh [--meadow BIN] [--scene SCENE] [--preset P] [--size WxH] [--frames F]
 #                          [--rounds R] [--out DIR] [VIEWS...]
 # Defaults: the Release build (scripts/build.sh), the full preset, 1280x720, 30 frames, 1 round,
-# bench-views/ in the current folder, data/scenes/irises.json, every view below. VIEWS names some.
+# out/bench-views/ in the repository (ignored by git), data/scenes/irises.json, every view below. VIEWS names some.
 # The views (eye x,y,z then target x,y,z, metres; the field is a 105 m square about the origin):
 #   default  the scene's camera          low     across the field from outside it, 1.2 m up
 #   high     high oblique, over a corner inside  among the irises at eye height
@@ -22,7 +22,7 @@ size=1280x720
 frames=30
 rounds=1
 preset=full
-out="$PWD/bench-views"
+out="$root/out/bench-views"
 declare -A cameras=(
   [default]="" [low]="-30,1.2,-30,0,0.4,0" [high]="-22,16,-22,4,0,4" [inside]="0,1.7,0,30,0.5,30"
   [diag]="-60,2,-60,0,0,0" [down6]="0,6,0,10,0,10" [side]="0,1.5,-60,0,0.5,0" [top]="0,40,0.1,0,0,0"
