@@ -561,6 +561,47 @@ TEST_F(Gpu, SkyBlendMatchesCpuReference) {
     destroyFieldRenderer(*context, renderer);
 }
 
+// The sky backdrop shows the sun's disk where a pixel's view ray lies within the sun's angular
+// radius of its direction (sky.frag, with the radius's cosine from sky.vert). Looking straight at
+// the sun through a picture of odd size, the middle pixel's ray is the sun's direction: it takes
+// the sun's radiance on top of the sky's (as much of it as a half float holds). Its neighbour's ray is about 0.85
+// degrees off, over three times the radius (0.27 degrees), and sees the sky alone; so does a pixel three to the side.
+TEST_F(Gpu, TheSkyShowsTheSunsDiskWithinItsAngularRadius) {
+    const FieldScenery scenery = testScenery();
+    const sky::SkyFrame& sun = scenery.sky.frames[0]; // the test sky's one frame: every hour shows it
+    ASSERT_GT(sun.sunDirection.y, 0.1f);
+    std::vector<gpu::GpuInstance> instances = scatter(1, 3);
+    instances[0].positionScale = glm::vec4(0.0f, 0.0f, 0.0f, 0.2f) - glm::vec4(sun.sunDirection * 50.0f, 0.0f);
+    FieldRenderer renderer = createFieldRenderer(*context, staticClumps(testMeshes()), instances, testAtlas(), scenery);
+    const uint32_t size = 65;
+    Offscreen offscreen = createOffscreen(*context, {size, size});
+    Camera camera;
+    camera.eye = glm::vec3(0.0f, 2.0f, 0.0f);
+    camera.target = camera.eye + sun.sunDirection * 10.0f;
+    renderOffscreenFrame(*context, renderer, offscreen, frameState(camera, size, size));
+    const std::vector<uint8_t> hdr = readImageBytes(*context, offscreen.targets.hdr, VK_IMAGE_ASPECT_COLOR_BIT, 8,
+                                                    VK_IMAGE_LAYOUT_GENERAL, access::kComputeReadWrite);
+    const auto radiance = [&](uint32_t x, uint32_t y) {
+        uint16_t h[4];
+        std::memcpy(h, hdr.data() + 8 * (size_t(y) * size + x), sizeof(h));
+        return glm::vec3(glm::unpackHalf1x16(h[0]), glm::unpackHalf1x16(h[1]), glm::unpackHalf1x16(h[2]));
+    };
+    const glm::vec3 middle = radiance(32, 32), beside = radiance(31, 32), aside = radiance(29, 32);
+    std::printf("sun %.1f %.1f %.1f; the middle pixel %.1f %.1f %.1f, beside it %.3f %.3f %.3f, three aside %.3f %.3f "
+                "%.3f\n",
+                sun.sunRadiance.r, sun.sunRadiance.g, sun.sunRadiance.b, middle.r, middle.g, middle.b, beside.r,
+                beside.g, beside.b, aside.r, aside.g, aside.b);
+    for (int c = 0; c < 3; ++c) {
+        ASSERT_GT(sun.sunRadiance[c], 10.0f * aside[c]) << c; // a disk far brighter than the sky
+        // The HDR image's half floats end at 65,504, below the disk's radiance in this sky: lavapipe
+        // stores their largest there (a device may store infinity, which passes too).
+        EXPECT_GE(middle[c], 0.99f * std::min(aside[c] + sun.sunRadiance[c], 65504.0f)) << c;
+        EXPECT_NEAR(beside[c], aside[c], 0.1f * aside[c]) << c;
+    }
+    destroyOffscreen(*context, offscreen);
+    destroyFieldRenderer(*context, renderer);
+}
+
 // With the far field, its splat pass is timed between the draw and the tone map (which is then the
 // resolve pass).
 TEST_F(Gpu, TimestampsBracketTheFarFieldsPasses) {
