@@ -36,7 +36,10 @@ MEADOW_CONST kFarGroupSize = 64;
 MEADOW_CONST kFarMaxLanes = 32;
 MEADOW_CONST kFarInstancesPerGroup = 32;
 MEADOW_CONST kFarMaxGroups = 65535;
-MEADOW_CONST kFarResolveGroupSize = 8;
+// The resolve pass's workgroups: a run of 128 pixels of one row each. On lavapipe the pass took
+// 9.3 ms a frame with these against 12.4 with tiles of 8x8 pixels and 10.0 with runs of 64
+// (docs/BENCHMARKS.md, "The resolve in runs of a row"); on a GPU, four warps on adjacent pixels.
+MEADOW_CONST kFarResolveGroupWidth = 128;
 
 // Motion steps the animate pass takes at most in one frame: 10 s of motion, so the field keeps
 // real time at any frame rate down to 0.1 fps. After a longer stall (a minimised window, a

@@ -77,8 +77,8 @@ TEST(SpirvReflect, FarPassesLayout) {
     EXPECT_EQ(splat.bindings.at(10), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
     EXPECT_EQ(splat.pushConstantBytes, 16u);
     ShaderReflection resolve = reflectShader(findShader("far_resolve.comp"), "far_resolve.comp");
-    EXPECT_EQ(resolve.localSize[0], gpu::kFarResolveGroupSize);
-    EXPECT_EQ(resolve.localSize[1], gpu::kFarResolveGroupSize);
+    EXPECT_EQ(resolve.localSize[0], gpu::kFarResolveGroupWidth); // a run of one row's pixels
+    EXPECT_EQ(resolve.localSize[1], 1u);
     EXPECT_FALSE(resolve.localSizeXSpecialized);
     // Frame, visibility buffer (as a texel buffer), HDR image, the meshes' depth, and the LDR image
     // it tone maps into.
