@@ -23,8 +23,10 @@ MEADOW_CONST kCullGroupSize = 64;
 MEADOW_CONST kAnimateGroupSize = 64;
 MEADOW_CONST kLightGroupSize = 64;
 MEADOW_CONST kTonemapGroupSize = 8;
-// The ground light map (ground_map.comp): one thread per texel, in square workgroups.
-MEADOW_CONST kGroundMapGroupSize = 8;
+// The ground light map (ground_map.comp): one thread per texel, in workgroups of a 128-texel run
+// of one row, as the resolve's: 23 ms a light frame in the low view on lavapipe against 28-36 with
+// squares of 8x8 (docs/BENCHMARKS.md, "The resolve in runs of a row").
+MEADOW_CONST kGroundMapGroupWidth = 128;
 // The far field (far_splat.h): a splat workgroup takes kFarInstancesPerGroup far instances at once,
 // its width / kFarInstancesPerGroup threads ("lanes") striding over each one's samples; one
 // workgroup per kFarInstancesPerGroup listed instances, at most kFarMaxGroups, each then taking

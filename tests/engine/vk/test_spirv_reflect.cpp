@@ -94,8 +94,8 @@ TEST(SpirvReflect, FarPassesLayout) {
 TEST(SpirvReflect, GroundMapReadsTexelsAndWritesTheMap) {
     ShaderReflection r = reflectShader(findShader("ground_map.comp"), "ground_map.comp");
     EXPECT_EQ(r.stage, VK_SHADER_STAGE_COMPUTE_BIT);
-    EXPECT_EQ(r.localSize[0], gpu::kGroundMapGroupSize);
-    EXPECT_EQ(r.localSize[1], gpu::kGroundMapGroupSize);
+    EXPECT_EQ(r.localSize[0], gpu::kGroundMapGroupWidth); // a run of one row's texels
+    EXPECT_EQ(r.localSize[1], 1u);
     ASSERT_EQ(r.bindings.size(), 4u);
     for (uint32_t b = 0; b < 3; ++b)
         EXPECT_EQ(r.bindings.at(b), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) << "binding " << b;
