@@ -6,7 +6,8 @@
 #   scripts/bench-views.sh [--meadow BIN] [--scene SCENE] [--preset P] [--size WxH] [--frames F]
 #                          [--rounds R] [--out DIR] [VIEWS...]
 # Defaults: the Release build (scripts/build.sh), the full preset, 1280x720, 30 frames, 1 round,
-# out/bench-views/ in the repository (ignored by git), data/scenes/irises.json, every view below. VIEWS names some.
+# out/bench-views/ in the repository (ignored by git), data/scenes/irises.json, every view below.
+# VIEWS names some.
 # The views (eye x,y,z then target x,y,z, metres; the field is a 105 m square about the origin):
 #   default  the scene's camera          low     across the field from outside it, 1.2 m up
 #   high     high oblique, over a corner inside  among the irises at eye height

@@ -8,7 +8,7 @@ MEADOW_FRAME_BLOCK(0, 0)
 
 layout(location = 0) out vec2 outClip;
 // The cosine of the sun's angular radius, worked out once per vertex rather than per pixel: lavapipe
-// evaluates cos as a polynomial in every fragment, about 1.5 ms of the low view's draw pass
+// evaluates cos as a polynomial in every fragment, about 0.7 ms of the low view's draw pass
 // (docs/BENCHMARKS.md, "The sun's cosine per vertex"). The same value at all three vertices.
 layout(location = 1) flat out float outSunCosine;
 
