@@ -13,7 +13,7 @@
 #include "far_splat.h"
 #include "tonemap.h"
 
-layout(local_size_x = kFarResolveGroupWidth, local_size_y = 1) in; // gpu_types.h
+layout(local_size_x = kRowRunWidth, local_size_y = 1) in; // gpu_types.h
 // Whether the far field's pixels are stored into the HDR image too (render_targets.h, HdrContents):
 // false where only the LDR image is read after the frame.
 layout(constant_id = 1) const bool kStoreHdr = true;

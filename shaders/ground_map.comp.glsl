@@ -7,7 +7,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
-layout(local_size_x = kGroundMapGroupWidth, local_size_y = 1) in; // gpu_types.h
+layout(local_size_x = kRowRunWidth, local_size_y = 1) in; // gpu_types.h
 
 layout(set = 0, binding = 0) uniform usamplerBuffer texelStart; // per texel, then the end
 layout(set = 0, binding = 1) uniform usamplerBuffer entries;    // uvec2 per listed cell

@@ -23,10 +23,11 @@ MEADOW_CONST kCullGroupSize = 64;
 MEADOW_CONST kAnimateGroupSize = 64;
 MEADOW_CONST kLightGroupSize = 64;
 MEADOW_CONST kTonemapGroupSize = 8;
-// The ground light map (ground_map.comp): one thread per texel, in workgroups of a 128-texel run
-// of one row, as the resolve's: 23 ms a light frame in the low view on lavapipe against 28-36 with
-// squares of 8x8 (docs/BENCHMARKS.md, "The resolve in runs of a row").
-MEADOW_CONST kGroundMapGroupWidth = 128;
+// The resolve (far_resolve.comp) and the ground light map (ground_map.comp), a thread per pixel or
+// texel, run in workgroups of a run of this many pixels of one row. On lavapipe the resolve took 9.3 ms a frame with
+// these against 12.4 with tiles of 8x8 and 10.0 with runs of 64, and the ground map 23 ms a light frame against 28-36
+// with tiles of 8x8 (docs/BENCHMARKS.md, "The resolve in runs of a row"); on a GPU, four warps on adjacent pixels.
+MEADOW_CONST kRowRunWidth = 128;
 // The far field (far_splat.h): a splat workgroup takes kFarInstancesPerGroup far instances at once,
 // its width / kFarInstancesPerGroup threads ("lanes") striding over each one's samples; one
 // workgroup per kFarInstancesPerGroup listed instances, at most kFarMaxGroups, each then taking
@@ -38,10 +39,6 @@ MEADOW_CONST kFarGroupSize = 64;
 MEADOW_CONST kFarMaxLanes = 32;
 MEADOW_CONST kFarInstancesPerGroup = 32;
 MEADOW_CONST kFarMaxGroups = 65535;
-// The resolve pass's workgroups: a run of 128 pixels of one row each. On lavapipe the pass took
-// 9.3 ms a frame with these against 12.4 with tiles of 8x8 pixels and 10.0 with runs of 64
-// (docs/BENCHMARKS.md, "The resolve in runs of a row"); on a GPU, four warps on adjacent pixels.
-MEADOW_CONST kFarResolveGroupWidth = 128;
 
 // Motion steps the animate pass takes at most in one frame: 10 s of motion, so the field keeps
 // real time at any frame rate down to 0.1 fps. After a longer stall (a minimised window, a

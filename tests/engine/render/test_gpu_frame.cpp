@@ -564,8 +564,9 @@ TEST_F(Gpu, SkyBlendMatchesCpuReference) {
 // The sky backdrop shows the sun's disk where a pixel's view ray lies within the sun's angular
 // radius of its direction (sky.frag, with the radius's cosine from sky.vert). Looking straight at
 // the sun through a picture of odd size, the middle pixel's ray is the sun's direction: it takes
-// the sun's radiance on top of the sky's (as much of it as a half float holds). Its neighbour's ray is about 0.85
-// degrees off, over three times the radius (0.27 degrees), and sees the sky alone; so does a pixel three to the side.
+// the sun's radiance on top of the sky's (as much of it as a half float holds). Its neighbour's ray
+// is about 0.85 degrees off, over three times the radius (0.27 degrees), and sees the sky alone; so
+// does a pixel three to the side.
 TEST_F(Gpu, TheSkyShowsTheSunsDiskWithinItsAngularRadius) {
     const FieldScenery scenery = testScenery();
     const sky::SkyFrame& sun = scenery.sky.frames[0]; // the test sky's one frame: every hour shows it

@@ -77,7 +77,7 @@ TEST(SpirvReflect, FarPassesLayout) {
     EXPECT_EQ(splat.bindings.at(10), VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER);
     EXPECT_EQ(splat.pushConstantBytes, 16u);
     ShaderReflection resolve = reflectShader(findShader("far_resolve.comp"), "far_resolve.comp");
-    EXPECT_EQ(resolve.localSize[0], gpu::kFarResolveGroupWidth); // a run of one row's pixels
+    EXPECT_EQ(resolve.localSize[0], gpu::kRowRunWidth); // a run of one row's pixels
     EXPECT_EQ(resolve.localSize[1], 1u);
     EXPECT_FALSE(resolve.localSizeXSpecialized);
     // Frame, visibility buffer (as a texel buffer), HDR image, the meshes' depth, and the LDR image
@@ -94,7 +94,7 @@ TEST(SpirvReflect, FarPassesLayout) {
 TEST(SpirvReflect, GroundMapReadsTexelsAndWritesTheMap) {
     ShaderReflection r = reflectShader(findShader("ground_map.comp"), "ground_map.comp");
     EXPECT_EQ(r.stage, VK_SHADER_STAGE_COMPUTE_BIT);
-    EXPECT_EQ(r.localSize[0], gpu::kGroundMapGroupWidth); // a run of one row's texels
+    EXPECT_EQ(r.localSize[0], gpu::kRowRunWidth); // a run of one row's texels
     EXPECT_EQ(r.localSize[1], 1u);
     ASSERT_EQ(r.bindings.size(), 4u);
     for (uint32_t b = 0; b < 3; ++b)
