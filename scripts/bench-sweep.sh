@@ -6,8 +6,8 @@
 #                          [--out DIR] [--preset P] [--far-radius PX] [COUNTS...]
 # Defaults: the Release build (scripts/build.sh), 1280x720, 30 frames, out/bench-sweep/ in the
 # repository (ignored by git), the full preset, data/scenes/irises.json, counts 10000 30000 100000
-# 300000 1000000, bench's default far field (--far-radius PX: bench's option, 0 turns the far field off; the table
-# has the far field's two passes when it runs).
+# 300000 1000000, bench's default far field (--far-radius PX: bench's option, 0 turns the far field
+# off; the table has the far field's two passes when it runs).
 # --bench CMD runs CMD SCENE [bench options] instead of `meadow bench`: the bench runner of a
 # bundle (scripts/bundle-bench.sh) sweeps with it on a machine without meadow's build.
 set -euo pipefail

@@ -83,10 +83,11 @@ read -r -a versus_extra <<< "$versus_args"
 mkdir -p "$out"
 # One run: which series (first or versus), the view, the round.
 run() {
-  local bin="$meadow" opts=("${extra[@]}") json="$out/bench-$2-$3.json"
-  if [ "$1" = versus ]; then bin="$versus"; opts=("${extra[@]}" "${versus_extra[@]}"); json="$out/bench-$2-$3-versus.json"; fi
+  local bin="$meadow" opts=("${extra[@]}") tail=""
+  if [ "$1" = versus ]; then bin="$versus"; opts+=("${versus_extra[@]}"); tail="-versus"; fi
   local cam=(); [ -n "${cameras[$2]}" ] && cam=(--camera "${cameras[$2]}")
-  "$bin" bench "$scene" --preset "$preset" --frames "$frames" --size "$size" "${cam[@]}" "${opts[@]}" --json "$json" > /dev/null
+  "$bin" bench "$scene" --preset "$preset" --frames "$frames" --size "$size" "${cam[@]}" "${opts[@]}" \
+    --json "$out/bench-$2-$3$tail.json" > /dev/null
 }
 # Rounds outside, views inside: a machine whose speed drifts moves every view alike.
 for ((r = 1; r <= rounds; ++r)); do

@@ -24,9 +24,10 @@ MEADOW_CONST kAnimateGroupSize = 64;
 MEADOW_CONST kLightGroupSize = 64;
 MEADOW_CONST kTonemapGroupSize = 8;
 // The resolve (far_resolve.comp) and the ground light map (ground_map.comp), a thread per pixel or
-// texel, run in workgroups of a run of this many pixels of one row. On lavapipe the resolve took 9.3 ms a frame with
-// these against 12.4 with tiles of 8x8 and 10.0 with runs of 64, and the ground map 23 ms a light frame against 28-36
-// with tiles of 8x8 (docs/BENCHMARKS.md, "The resolve in runs of a row"); on a GPU, four warps on adjacent pixels.
+// texel, run in workgroups of a run of this many pixels of one row. On lavapipe the resolve took
+// 9.3 ms a frame with these against 12.4 with tiles of 8x8 and 10.0 with runs of 64, and the ground
+// map 23 ms a light frame against 28-36 with tiles of 8x8 (docs/BENCHMARKS.md, "The resolve in
+// runs of a row"); on a GPU, four warps on adjacent pixels.
 MEADOW_CONST kRowRunWidth = 128;
 // The far field (far_splat.h): a splat workgroup takes kFarInstancesPerGroup far instances at once,
 // its width / kFarInstancesPerGroup threads ("lanes") striding over each one's samples; one
