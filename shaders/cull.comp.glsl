@@ -60,6 +60,7 @@ void appendLod(uint bucket, uint entry, int sub) {
                 atomicAdd(nearDispatch.groupsX, groups);
             atomicAdd(stats.nearInstances, 1u);
             atomicAdd(stats.nearTriangles, mesh.w / 3u);
+            atomicAdd(stats.nearPerLod[bucket % frame.counts.w], 1u);
             return;
         }
     }

@@ -436,9 +436,7 @@ void readFrameStats(Walkthrough& w, double wall) {
     w.hudStats.triangles = fieldStats.trianglesDrawn;
     w.hudStats.farInstances = fieldStats.farInstances;
     w.hudStats.farSamples = fieldStats.farSamples;
-    w.hudStats.instancesPerLod.assign(w.renderer.lodCount, 0);
-    for (size_t m = 0; m < fieldStats.visiblePerMesh.size(); ++m)
-        w.hudStats.instancesPerLod[m % w.renderer.lodCount] += fieldStats.visiblePerMesh[m];
+    w.hudStats.instancesPerLod = fieldStats.drawsPerLod();
     w.statsWindow.add(passes, wall);
     w.logWindow.add(passes, wall);
     w.statsWindow.publish(w.hudStats, 0.5);

@@ -166,6 +166,7 @@ void cpuDriverUpdate(Context& ctx, CpuDriver& d, const gpu::GpuFrame& frame) {
                 }
                 ++stats.nearInstances;
                 stats.nearTriangles += mesh.w / 3u;
+                ++stats.nearPerLod[bucket % d.lodCount];
                 return;
             }
         }

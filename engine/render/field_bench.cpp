@@ -102,11 +102,7 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     j["trianglesPerFrame"] = stats.trianglesDrawn;
     // Draws per LOD over all clumps (a crossfading instance counts in both of its LODs), whether the
     // mesh pass or the near raster drew them.
-    std::vector<uint32_t> perLod(renderer.lodCount, 0);
-    const std::vector<uint32_t> nearPerMesh = readNearRasterDraws(ctx, renderer);
-    for (size_t m = 0; m < stats.visiblePerMesh.size(); ++m)
-        perLod[m % renderer.lodCount] += stats.visiblePerMesh[m] + nearPerMesh[m];
-    j["instancesPerLod"] = perLod;
+    j["instancesPerLod"] = stats.drawsPerLod();
     // Where each coarser LOD takes over (px of projected radius; --lod-tolerance scales them).
     std::vector<float> switchRadii;
     for (uint32_t i = 0; i + 1 < renderer.lodCount; ++i)

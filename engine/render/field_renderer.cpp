@@ -829,6 +829,13 @@ void recordFieldFrame(Context& ctx, FieldRenderer& r, VkCommandBuffer cmd, const
     recordStatsReadback(r, cmd);
 }
 
+std::vector<uint32_t> FieldStats::drawsPerLod() const {
+    std::vector<uint32_t> perLod = nearPerLod;
+    for (size_t m = 0; m < visiblePerMesh.size() && !perLod.empty(); ++m)
+        perLod[m % perLod.size()] += visiblePerMesh[m];
+    return perLod;
+}
+
 FieldStats readFieldStats(const FieldRenderer& r) {
     gpu::GpuCullStats s;
     std::memcpy(&s, r.statsReadback.mapped(), sizeof(s));
@@ -839,6 +846,7 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     out.farSamples = s.farSamples;
     out.nearInstances = s.nearInstances;
     out.nearTriangles = s.nearTriangles;
+    out.nearPerLod.assign(s.nearPerLod, s.nearPerLod + std::min<uint32_t>(r.lodCount, std::size(s.nearPerLod)));
     std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
     std::memcpy(draws.data(), static_cast<const char*>(r.statsReadback.mapped()) + sizeof(s),
                 draws.size() * sizeof(gpu::GpuDrawIndexedCommand));
@@ -848,21 +856,6 @@ FieldStats readFieldStats(const FieldRenderer& r) {
         out.trianglesDrawn += uint64_t(draws[m].instanceCount) * r.meshTriangles[m];
     }
     return out;
-}
-
-std::vector<uint32_t> readNearRasterDraws(Context& ctx, const FieldRenderer& r) {
-    std::vector<uint32_t> perMesh(r.meshCount, 0);
-    if (!r.nearRasterOn)
-        return perMesh;
-    gpu::GpuNearDispatch dispatch{};
-    readbackBuffer(ctx, r.nearDispatch, &dispatch, sizeof dispatch);
-    std::vector<glm::uvec4> list(dispatch.count);
-    if (!list.empty())
-        readbackBuffer(ctx, r.nearList, list.data(), list.size() * sizeof(glm::uvec4));
-    for (const glm::uvec4& entry : list)
-        if (entry.y < perMesh.size())
-            ++perMesh[entry.y];
-    return perMesh;
 }
 
 namespace {

@@ -268,7 +268,11 @@ struct FieldStats {
     uint32_t nearInstances = 0;           // LOD draws the near raster took (a crossfading instance may have two)
     uint64_t nearTriangles = 0;           // their triangles (not in trianglesDrawn)
     uint64_t trianglesDrawn = 0;          // instances + terrain + sky
-    std::vector<uint32_t> visiblePerMesh; // per draw bucket; a crossfading instance counts in two
+    std::vector<uint32_t> visiblePerMesh; // the draw pass's, per draw bucket; a crossfading instance counts in two
+    std::vector<uint32_t> nearPerLod;     // the near raster's per LOD (lodCount of them), one per draw
+    // Draws per LOD (lodCount of them), the draw pass's and the near raster's together: a crossfading
+    // instance counts in both of its LODs.
+    std::vector<uint32_t> drawsPerLod() const;
 };
 
 // The near raster's workgroup width on a device (FieldScenery::nearWidth = 0): gpu::kNearGroupSize
@@ -310,10 +314,6 @@ void recordFieldFrame(Context& context, FieldRenderer& renderer, VkCommandBuffer
                       GpuTimer* timer);
 
 // The statistics of the last completed frame.
-// The near raster's draws of the last frame per draw bucket (read back from the near list: a copy
-// and a wait, for benchmarks and tests, not every frame); all 0 without the near raster.
-std::vector<uint32_t> readNearRasterDraws(Context& context, const FieldRenderer& renderer);
-
 FieldStats readFieldStats(const FieldRenderer& renderer);
 
 // The ground light map as the last light pass left it: RGB per texel, row by row (for tests and

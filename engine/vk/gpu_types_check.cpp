@@ -4,6 +4,7 @@
 // differently. (GpuLodParams and GpuLodChoice of lod_select.h live in registers only.)
 #include "far_splat.h"
 #include "gpu_types.h"
+#include "library/motion_basis.h"
 // After gpu_types.h and motion_step.h, as draw_instance.h asks.
 #include "draw_instance.h"
 #include "motion_step.h"
@@ -99,7 +100,9 @@ static_assert(offsetof(GpuCullStats, farInstances) == 8);
 static_assert(offsetof(GpuCullStats, farSamples) == 12);
 static_assert(offsetof(GpuCullStats, nearInstances) == 16);
 static_assert(offsetof(GpuCullStats, nearTriangles) == 20);
-static_assert(sizeof(GpuCullStats) == 32);
+static_assert(offsetof(GpuCullStats, nearPerLod) == 24);
+static_assert(sizeof(GpuCullStats::nearPerLod) / sizeof(uint) == meadow::kLodCount);
+static_assert(sizeof(GpuCullStats) == 48);
 static_assert(offsetof(GpuNearDispatch, count) == 12);
 static_assert(offsetof(GpuNearDispatch, vertices) == 16);
 static_assert(sizeof(GpuNearDispatch) == 32);

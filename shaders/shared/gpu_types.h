@@ -202,7 +202,11 @@ struct GpuCullStats {
     uint farSamples;    // splats those instances draw
     uint nearInstances; // LOD draws (an instance's one or two while crossfading) the near raster takes
     uint nearTriangles; // the triangles of those draws
-    uint pad0, pad1;
+    // Those draws per LOD (0 to 4: the LOD mesh bucket modulo the LOD count), one per listed draw
+    // however many parts the near list holds it in: with the mesh pass's per bucket (the draw
+    // commands' instanceCount), the draws of each LOD.
+    uint nearPerLod[5];
+    uint pad0;
 };
 
 // The splat pass's indirect dispatch (VkDispatchIndirectCommand) and the far list's length.

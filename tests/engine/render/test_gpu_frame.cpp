@@ -24,6 +24,7 @@
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
+#include <numeric>
 #include <random>
 #include <string>
 
@@ -653,6 +654,9 @@ TEST_F(Gpu, NearRasterTakesLod0BelowItsRadius) {
     EXPECT_GT(lod0WithMeshes, 50u);
     EXPECT_EQ(lod0WithRaster, 0u);
     EXPECT_EQ(raster.stats.trianglesDrawn + raster.stats.nearTriangles, meshes.stats.trianglesDrawn);
+    // The same draws per LOD, whichever pass draws them (bench's instancesPerLod, the HUD's).
+    EXPECT_EQ(raster.stats.drawsPerLod(), meshes.stats.drawsPerLod());
+    EXPECT_GT(raster.stats.nearPerLod.at(0), 50u);
     EXPECT_LE(differingChannels(raster.picture, meshes.picture), raster.picture.size() / 100);
 }
 
@@ -734,6 +738,7 @@ TEST_F(Gpu, CpuDrivenPathDrawsTheSameNearRaster) {
     EXPECT_GT(gpuPath.stats.nearInstances, 200u);
     EXPECT_EQ(cpuPath.stats.nearInstances, gpuPath.stats.nearInstances);
     EXPECT_EQ(cpuPath.stats.nearTriangles, gpuPath.stats.nearTriangles);
+    EXPECT_EQ(cpuPath.stats.nearPerLod, gpuPath.stats.nearPerLod);
     EXPECT_TRUE(gpuPath.picture == cpuPath.picture);
 }
 
@@ -813,6 +818,9 @@ TEST_F(Gpu, TheNearRasterDrawsALargeDrawWholeWhenItsDrawsAreTaken) {
     ASSERT_EQ(dealt.stats.nearInstances, 1u); // the whole stack, in the near raster
     EXPECT_EQ(dealt.stats.nearTriangles, 2 * kQuads);
     EXPECT_EQ(dealt.nearListed, gpu::kNearDrawParts); // over 48 px: in parts
+    // One draw per LOD count, whatever its parts.
+    const std::vector<uint32_t> perLod = dealt.stats.drawsPerLod();
+    EXPECT_EQ(std::accumulate(perLod.begin(), perLod.end(), 0u), 1u);
     size_t covered = 0;
     for (uint64_t word : dealt.visibility)
         covered += word != ~uint64_t(0);
