@@ -110,7 +110,7 @@ nlohmann::json measure(Context& ctx, const std::vector<FieldClump>& clumps, cons
     j["lodSwitchRadii"] = switchRadii;
     j["visibleInstances"] = stats.visibleInstances;
     // The far field (--far-radius): instances drawn as surface samples (a crossfading one counts
-    // here and at LOD 4) and the splats they drew, in the last measured frame.
+    // here and at the mesh LOD it fades from) and the splats they drew, in the last measured frame.
     j["farRadius"] = renderer.farField ? renderer.lodParams.farRadius : 0.0f;
     j["instancesFar"] = stats.farInstances;
     j["splatsPerFrame"] = stats.farSamples;
