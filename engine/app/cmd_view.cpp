@@ -434,6 +434,9 @@ void readFrameStats(Walkthrough& w, double wall) {
     w.hudStats.visibleInstances = fieldStats.visibleInstances;
     w.hudStats.testedInstances = fieldStats.testedInstances;
     w.hudStats.triangles = fieldStats.trianglesDrawn;
+    w.hudStats.nearRaster = w.renderer.nearRasterOn;
+    w.hudStats.nearDraws = fieldStats.nearInstances;
+    w.hudStats.nearTriangles = fieldStats.nearTriangles;
     w.hudStats.farInstances = fieldStats.farInstances;
     w.hudStats.farSamples = fieldStats.farSamples;
     w.hudStats.instancesPerLod = fieldStats.drawsPerLod();

@@ -30,7 +30,9 @@ void statsSection(const HudStats& s) {
             ImGui::SameLine();
         ImGui::Text("LOD%zu %u", lod, s.instancesPerLod[lod]);
     }
-    ImGui::Text("%.2f M triangles per frame", double(s.triangles) * 1e-6);
+    ImGui::Text("%.2f M triangles per frame in the draw pass", double(s.triangles) * 1e-6);
+    if (s.nearRaster)
+        ImGui::Text("near raster: %u draws, %.2f M triangles", s.nearDraws, double(s.nearTriangles) * 1e-6);
     if (s.farRadius > 0.0f)
         ImGui::Text("far field (below %.0f px): %u instances, %.2f M splats", s.farRadius, s.farInstances,
                     double(s.farSamples) * 1e-6);

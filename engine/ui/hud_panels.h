@@ -22,7 +22,10 @@ struct HudStats {
     float farRadius = 0.0f;                // px; 0: the far field is off (--far-radius 0)
     uint32_t farInstances = 0;             // drawn as the far field's splats (a crossfading one counts)
     uint64_t farSamples = 0;               // their samples splatted
-    uint64_t triangles = 0;
+    uint64_t triangles = 0;                // the draw pass's (graphics pipeline), terrain and sky included
+    bool nearRaster = false;               // whether the near raster is on (--near-raster)
+    uint32_t nearDraws = 0;                // LOD draws it took (a crossfading instance may have two)
+    uint64_t nearTriangles = 0;            // their triangles (not in `triangles`)
     std::string device;
     uint32_t width = 0, height = 0;
     const char* presentMode = "";
