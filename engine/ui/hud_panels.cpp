@@ -1,5 +1,7 @@
 #include "ui/hud_panels.h"
 
+#include <algorithm>
+#include <cstring>
 #include <imgui.h>
 
 namespace meadow {
@@ -9,21 +11,15 @@ void statsSection(const HudStats& s) {
     ImGui::Text("%.1f fps   %.1f ms per frame", s.fps, s.cpuFrameMs);
     ImGui::TextUnformatted(s.device.c_str());
     ImGui::Text("%ux%u, present mode %s", s.width, s.height, s.presentMode);
-    if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_SizingFixedFit)) {
-        for (const PassTime& p : s.gpu) {
-            ImGui::TableNextRow();
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(p.label.c_str());
-            ImGui::TableNextColumn();
-            ImGui::Text("%7.2f ms", p.milliseconds);
-        }
-        ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted("GPU total");
-        ImGui::TableNextColumn();
-        ImGui::Text("%7.2f ms", s.gpuTotalMs);
-        ImGui::EndTable();
-    }
+    // Label and time in columns of the (monospaced) font's characters, padded to the longest label:
+    // a table's fixed columns keep the width they first fit, before the near raster's longer labels
+    // were published, and cut them.
+    int labelWidth = int(std::strlen("GPU total"));
+    for (const PassTime& p : s.gpu)
+        labelWidth = std::max(labelWidth, int(p.label.size()));
+    for (const PassTime& p : s.gpu)
+        ImGui::Text("%-*s %7.2f ms", labelWidth, p.label.c_str(), p.milliseconds);
+    ImGui::Text("%-*s %7.2f ms", labelWidth, "GPU total", s.gpuTotalMs);
     ImGui::Text("%u of %u instances visible", s.visibleInstances, s.testedInstances);
     for (size_t lod = 0; lod < s.instancesPerLod.size(); ++lod) {
         if (lod > 0)
