@@ -12,8 +12,7 @@ void statsSection(const HudStats& s) {
     ImGui::TextUnformatted(s.device.c_str());
     ImGui::Text("%ux%u, present mode %s", s.width, s.height, s.presentMode);
     // Label and time in columns of the (monospaced) font's characters, padded to the longest label:
-    // a table's fixed columns keep the width they first fit, before the near raster's longer labels
-    // were published, and cut them.
+    // a table's fixed first column stayed too narrow for the near raster's labels and cut them.
     int labelWidth = int(std::strlen("GPU total"));
     for (const PassTime& p : s.gpu)
         labelWidth = std::max(labelWidth, int(p.label.size()));
