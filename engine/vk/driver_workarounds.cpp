@@ -16,11 +16,17 @@ std::string environment(const char* name) {
 
 LavapipeSettings lavapipeSettingsFromEnvironment() {
     LavapipeSettings s;
-    const std::string width = environment("LP_NATIVE_VECTOR_WIDTH");
-    char* end = nullptr;
-    const unsigned long value = std::strtoul(width.c_str(), &end, 10);
-    if (!width.empty() && *end == '\0' && value > 0 && value <= 4096)
-        s.vectorWidth = unsigned(value);
+    // As Mesa 22.3's debug_get_num_option reads it (util/u_debug.c): strtoll in base 0, the
+    // default when no digit was read.
+    s.vectorWidthText = environment("LP_NATIVE_VECTOR_WIDTH");
+    if (!s.vectorWidthText.empty()) {
+        char* end = nullptr;
+        const long long value = std::strtoll(s.vectorWidthText.c_str(), &end, 0);
+        s.vectorWidthSet = end != s.vectorWidthText.c_str();
+        s.vectorWidthValue = s.vectorWidthSet ? value : 0;
+    }
+    if (s.vectorWidthSet && (s.vectorWidthValue == 128 || s.vectorWidthValue == 256))
+        s.vectorWidth = unsigned(s.vectorWidthValue);
     s.cpuCapsOverride = environment("GALLIUM_OVERRIDE_CPU_CAPS");
     s.shaderCacheDir = environment("MESA_SHADER_CACHE_DIR");
     s.xdgCacheHome = environment("XDG_CACHE_HOME");
@@ -49,6 +55,10 @@ std::vector<std::pair<std::string, std::string>> lavapipeEnvironment(const Lavap
 std::string lavapipeUnsupportedReason(const LavapipeSettings& s) {
     // Mesa 22.3's values that hide AVX (util/u_cpu_detect.c); it ignores values it does not know.
     static constexpr std::string_view kBelowAvx[] = {"nosse", "sse", "sse2", "sse3", "ssse3", "sse4.1"};
+    if (s.vectorWidthSet && s.vectorWidthValue != 128 && s.vectorWidthValue != 256)
+        return "LP_NATIVE_VECTOR_WIDTH=" + s.vectorWidthText + ": lavapipe (Mesa 22.3) compiles shaders at 128 or " +
+               "256 bits only, and crashes compiling them at " + std::to_string(s.vectorWidthValue) +
+               "; unset it or set 128 or 256 (docs/ROBUSTNESS.md)";
     if (!s.cpuHasAvx)
         return {};
     for (std::string_view caps : kBelowAvx)

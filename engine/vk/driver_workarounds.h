@@ -3,7 +3,7 @@
 //
 // lavapipe (Mesa 22.3, LLVM 15) compiles shaders for the CPU it finds, as modified by two
 // environment variables it reads once, when the driver loads: LP_NATIVE_VECTOR_WIDTH (128 or 256
-// bits) and GALLIUM_OVERRIDE_CPU_CAPS (hide instruction sets). Two faults follow:
+// bits) and GALLIUM_OVERRIDE_CPU_CAPS (hide instruction sets). Three faults follow:
 //  - Mesa's on-disk shader cache keys vertex code by the CPU caps but not by the vector width, so
 //    a process at 128 bits runs vertex code cached by one at 256: its loop stores 8 shaded
 //    vertices per step into a buffer sized for steps of 4, past the end of a heap block (glibc
@@ -11,6 +11,9 @@
 //  - CPU caps set below AVX on a CPU that has AVX (GALLIUM_OVERRIDE_CPU_CAPS=nosse ... sse4.1):
 //    half-float conversion (unpackHalf2x16, rgba16f loads) jumps into an illegal instruction.
 //    meadow refuses to start on lavapipe with them.
+//  - Any vector width but 128 and 256 (512 on an AVX-512 CPU, 64, 0, ...): lavapipe crashes
+//    while it compiles the first compute pipeline (a segmentation fault in LLVM, or a division by
+//    zero). meadow refuses to start on lavapipe with them too.
 #pragma once
 
 #include <string>
@@ -21,7 +24,12 @@ namespace meadow {
 
 // What the environment asks of lavapipe and its shader cache, and what this CPU has.
 struct LavapipeSettings {
-    unsigned vectorWidth = 0;    // LP_NATIVE_VECTOR_WIDTH, 0 when unset or not a number
+    // LP_NATIVE_VECTOR_WIDTH as Mesa reads it (strtoll, base 0, what follows the digits ignored):
+    // whether it gives a width, and which. Unset, or no digits: lavapipe picks its own.
+    bool vectorWidthSet = false;
+    long long vectorWidthValue = 0;
+    std::string vectorWidthText; // as set
+    unsigned vectorWidth = 0;    // the width when it is one lavapipe runs (128, 256), else 0
     std::string cpuCapsOverride; // GALLIUM_OVERRIDE_CPU_CAPS, empty when unset or empty
     std::string shaderCacheDir;  // MESA_SHADER_CACHE_DIR, empty when unset
     std::string xdgCacheHome;    // XDG_CACHE_HOME

@@ -2,7 +2,9 @@
 // under each setting are tests/system/driver/lavapipe_settings.sh.
 #include "vk/driver_workarounds.h"
 
+#include <cstdlib>
 #include <gtest/gtest.h>
+#include <string>
 
 using namespace meadow;
 
@@ -51,4 +53,43 @@ TEST(DriverWorkarounds, RefusesCapsBelowAvxOnAnAvxCpu) {
     LavapipeSettings noAvx = settings(128, "sse4.1");
     noAvx.cpuHasAvx = false;
     EXPECT_EQ(lavapipeUnsupportedReason(noAvx), ""); // nothing hidden that the CPU has
+}
+
+// LP_NATIVE_VECTOR_WIDTH read as Mesa 22.3 reads it (strtoll in base 0, what follows the digits
+// ignored, the driver's own width when there is no digit); any width but 128 and 256 is refused on
+// lavapipe, which crashes compiling the first compute pipeline at 512, 384, 64 or 0 bits.
+TEST(DriverWorkarounds, ReadsTheVectorWidthAsMesaDoesAndRefusesWidthsItCannotCompileFor) {
+    const char* saved = std::getenv("LP_NATIVE_VECTOR_WIDTH");
+    const std::string before = saved ? saved : "";
+    const auto read = [](const char* value) {
+        setenv("LP_NATIVE_VECTOR_WIDTH", value, 1);
+        return lavapipeSettingsFromEnvironment();
+    };
+    struct Case {
+        const char* value;
+        bool set;
+        unsigned width; // the width meadow keeps a shader cache for; 0: none
+        bool refused;
+    };
+    for (const Case& c : {Case{"128", true, 128, false}, Case{"256", true, 256, false}, Case{"0x80", true, 128, false},
+                          Case{"0400", true, 256, false}, Case{"256bits", true, 256, false},
+                          Case{"abc", false, 0, false}, Case{"", false, 0, false}, Case{"512", true, 0, true},
+                          Case{"64", true, 0, true}, Case{"0", true, 0, true}, Case{"-128", true, 0, true}}) {
+        const LavapipeSettings s = read(c.value);
+        EXPECT_EQ(s.vectorWidthSet, c.set) << c.value;
+        EXPECT_EQ(s.vectorWidth, c.width) << c.value;
+        const std::string reason = lavapipeUnsupportedReason(s);
+        if (c.refused) {
+            EXPECT_EQ(reason.rfind(std::string("LP_NATIVE_VECTOR_WIDTH=") + c.value + ": lavapipe", 0), 0u) << reason;
+        } else {
+            EXPECT_EQ(reason, "") << c.value;
+        }
+        if (!c.refused && c.width == 0) {
+            EXPECT_TRUE(lavapipeEnvironment(s).empty()) << c.value; // lavapipe's own width: nothing to keep apart
+        }
+    }
+    if (saved)
+        setenv("LP_NATIVE_VECTOR_WIDTH", before.c_str(), 1);
+    else
+        unsetenv("LP_NATIVE_VECTOR_WIDTH");
 }

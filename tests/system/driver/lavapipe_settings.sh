@@ -3,8 +3,8 @@
 # to compile for on this machine: vector widths 256 and 128, each with GALLIUM_OVERRIDE_CPU_CAPS
 # unset and set to each value Mesa 22.3 accepts, all sharing one shader cache. Every render runs under a guard allocator, so a
 # driver that writes past a heap block fails here instead of in a user's render, and must match
-# the golden image. Settings below AVX on a CPU that has AVX must be refused with a clear message
-# (engine/vk/driver_workarounds.h).
+# the golden image. Settings below AVX on a CPU that has AVX, and vector widths other than 128 and
+# 256, must be refused with a clear message (engine/vk/driver_workarounds.h).
 #
 #   lavapipe_settings.sh MEADOW IMAGE_COMPARE OUTDIR
 # GUARD=malloc-check (default): glibc's checking allocator, which finds a write past a block when
@@ -59,5 +59,22 @@ for width in 256 128; do
       failures=$((failures + 1))
     fi
   done
+done
+# Widths lavapipe cannot compile for (it crashes at the first compute pipeline): a clean refusal,
+# exit status 1, naming the setting, and no image.
+for width in 512 64 0; do
+  setting="LP_NATIVE_VECTOR_WIDTH=$width"
+  log="$outdir/render-$width.log"
+  rm -f "$outdir/refused-$width.png"
+  LP_NATIVE_VECTOR_WIDTH="$width" "$meadow" render "$here/../../../data/scenes/irises.json" --preset ci --size 64x36 \
+    --out "$outdir/refused-$width.png" >"$log" 2>&1
+  status=$?
+  if [ "$status" = 1 ] && grep -q "meadow: error: LP_NATIVE_VECTOR_WIDTH=$width: lavapipe" "$log" &&
+    [ ! -e "$outdir/refused-$width.png" ]; then
+    echo "ok      $setting (refused, as it must be)"
+  else
+    echo "FAILED  $setting: expected a clean refusal and no image, got exit status $status:"; tail -3 "$log"
+    failures=$((failures + 1))
+  fi
 done
 [ "$failures" = 0 ] || { echo "$failures setting(s) failed; logs in $outdir"; exit 1; }
