@@ -846,7 +846,7 @@ FieldStats readFieldStats(const FieldRenderer& r) {
     out.farSamples = s.farSamples;
     out.nearInstances = s.nearInstances;
     out.nearTriangles = s.nearTriangles;
-    out.nearPerLod.assign(s.nearPerLod, s.nearPerLod + std::min<uint32_t>(r.lodCount, std::size(s.nearPerLod)));
+    out.nearPerLod.assign(s.nearPerLod, s.nearPerLod + r.lodCount); // at most kLodSelectCount (createFieldRenderer)
     std::vector<gpu::GpuDrawIndexedCommand> draws(r.meshCount);
     std::memcpy(draws.data(), static_cast<const char*>(r.statsReadback.mapped()) + sizeof(s),
                 draws.size() * sizeof(gpu::GpuDrawIndexedCommand));

@@ -19,14 +19,10 @@ LavapipeSettings lavapipeSettingsFromEnvironment() {
     // As Mesa 22.3's debug_get_num_option reads it (util/u_debug.c): strtoll in base 0, the
     // default when no digit was read.
     s.vectorWidthText = environment("LP_NATIVE_VECTOR_WIDTH");
-    if (!s.vectorWidthText.empty()) {
-        char* end = nullptr;
-        const long long value = std::strtoll(s.vectorWidthText.c_str(), &end, 0);
-        s.vectorWidthSet = end != s.vectorWidthText.c_str();
-        s.vectorWidthValue = s.vectorWidthSet ? value : 0;
-    }
-    if (s.vectorWidthSet && (s.vectorWidthValue == 128 || s.vectorWidthValue == 256))
-        s.vectorWidth = unsigned(s.vectorWidthValue);
+    char* end = nullptr;
+    const long long value = std::strtoll(s.vectorWidthText.c_str(), &end, 0);
+    if (end != s.vectorWidthText.c_str())
+        s.vectorWidth = value;
     s.cpuCapsOverride = environment("GALLIUM_OVERRIDE_CPU_CAPS");
     s.shaderCacheDir = environment("MESA_SHADER_CACHE_DIR");
     s.xdgCacheHome = environment("XDG_CACHE_HOME");
@@ -39,8 +35,9 @@ LavapipeSettings lavapipeSettingsFromEnvironment() {
 }
 
 std::vector<std::pair<std::string, std::string>> lavapipeEnvironment(const LavapipeSettings& s) {
-    if (s.vectorWidth == 0)
-        return {}; // lavapipe picks its width from the CPU and caps, which Mesa's cache key holds
+    if (s.vectorWidth != 128 && s.vectorWidth != 256)
+        return {}; // lavapipe picks its width from the CPU and caps, which Mesa's cache key holds (or
+                   // it is refused: lavapipeUnsupportedReason)
     // Mesa's own choice of folder (util/disk_cache_os.c), one level down.
     std::string base = s.shaderCacheDir;
     if (base.empty() && !s.xdgCacheHome.empty())
@@ -49,15 +46,15 @@ std::vector<std::pair<std::string, std::string>> lavapipeEnvironment(const Lavap
         base = s.home + "/.cache";
     if (base.empty())
         return {{"MESA_SHADER_CACHE_DISABLE", "true"}};
-    return {{"MESA_SHADER_CACHE_DIR", base + "/meadow-lavapipe-" + std::to_string(s.vectorWidth)}};
+    return {{"MESA_SHADER_CACHE_DIR", base + "/meadow-lavapipe-" + std::to_string(*s.vectorWidth)}};
 }
 
 std::string lavapipeUnsupportedReason(const LavapipeSettings& s) {
     // Mesa 22.3's values that hide AVX (util/u_cpu_detect.c); it ignores values it does not know.
     static constexpr std::string_view kBelowAvx[] = {"nosse", "sse", "sse2", "sse3", "ssse3", "sse4.1"};
-    if (s.vectorWidthSet && s.vectorWidthValue != 128 && s.vectorWidthValue != 256)
+    if (s.vectorWidth && *s.vectorWidth != 128 && *s.vectorWidth != 256)
         return "LP_NATIVE_VECTOR_WIDTH=" + s.vectorWidthText + ": lavapipe (Mesa 22.3) compiles shaders at 128 or " +
-               "256 bits only, and crashes compiling them at " + std::to_string(s.vectorWidthValue) +
+               "256 bits only, and crashes compiling them at " + std::to_string(*s.vectorWidth) +
                "; unset it or set 128 or 256 (docs/ROBUSTNESS.md)";
     if (!s.cpuHasAvx)
         return {};

@@ -16,6 +16,7 @@
 //    zero). meadow refuses to start on lavapipe with them too.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,12 +25,10 @@ namespace meadow {
 
 // What the environment asks of lavapipe and its shader cache, and what this CPU has.
 struct LavapipeSettings {
-    // LP_NATIVE_VECTOR_WIDTH as Mesa reads it (strtoll, base 0, what follows the digits ignored):
-    // whether it gives a width, and which. Unset, or no digits: lavapipe picks its own.
-    bool vectorWidthSet = false;
-    long long vectorWidthValue = 0;
+    // LP_NATIVE_VECTOR_WIDTH as Mesa reads it (strtoll, base 0, what follows the digits ignored);
+    // none when unset or without a digit, and lavapipe picks its own.
+    std::optional<long long> vectorWidth;
     std::string vectorWidthText; // as set
-    unsigned vectorWidth = 0;    // the width when it is one lavapipe runs (128, 256), else 0
     std::string cpuCapsOverride; // GALLIUM_OVERRIDE_CPU_CAPS, empty when unset or empty
     std::string shaderCacheDir;  // MESA_SHADER_CACHE_DIR, empty when unset
     std::string xdgCacheHome;    // XDG_CACHE_HOME

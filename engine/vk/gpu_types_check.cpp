@@ -4,7 +4,7 @@
 // differently. (GpuLodParams and GpuLodChoice of lod_select.h live in registers only.)
 #include "far_splat.h"
 #include "gpu_types.h"
-#include "library/motion_basis.h"
+#include "lod_select.h"
 // After gpu_types.h and motion_step.h, as draw_instance.h asks.
 #include "draw_instance.h"
 #include "motion_step.h"
@@ -101,7 +101,7 @@ static_assert(offsetof(GpuCullStats, farSamples) == 12);
 static_assert(offsetof(GpuCullStats, nearInstances) == 16);
 static_assert(offsetof(GpuCullStats, nearTriangles) == 20);
 static_assert(offsetof(GpuCullStats, nearPerLod) == 24);
-static_assert(sizeof(GpuCullStats::nearPerLod) / sizeof(uint) == meadow::kLodCount);
+static_assert(sizeof(GpuCullStats::nearPerLod) / sizeof(uint) == kLodSelectCount); // a renderer's most LODs
 static_assert(sizeof(GpuCullStats) == 48);
 static_assert(offsetof(GpuNearDispatch, count) == 12);
 static_assert(offsetof(GpuNearDispatch, vertices) == 16);

@@ -202,9 +202,9 @@ struct GpuCullStats {
     uint farSamples;    // splats those instances draw
     uint nearInstances; // LOD draws (an instance's one or two while crossfading) the near raster takes
     uint nearTriangles; // the triangles of those draws
-    // Those draws per LOD (0 to 4: the LOD mesh bucket modulo the LOD count), one per listed draw
-    // however many parts the near list holds it in: with the mesh pass's per bucket (the draw
-    // commands' instanceCount), the draws of each LOD.
+    // Those draws per LOD (the LOD mesh bucket modulo the LOD count; lod_select.h's
+    // kLodSelectCount of them), one per listed draw however many parts the near list holds it in:
+    // with the mesh pass's per bucket (the draw commands' instanceCount), the draws of each LOD.
     uint nearPerLod[5];
     uint pad0;
 };

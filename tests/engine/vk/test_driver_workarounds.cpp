@@ -13,7 +13,8 @@ using Environment = std::vector<std::pair<std::string, std::string>>;
 
 LavapipeSettings settings(unsigned width, const char* caps = "") {
     LavapipeSettings s;
-    s.vectorWidth = width;
+    if (width != 0) // 0: LP_NATIVE_VECTOR_WIDTH unset
+        s.vectorWidth = width;
     s.cpuCapsOverride = caps;
     s.home = "/home/u";
     s.cpuHasAvx = true;
@@ -75,17 +76,24 @@ TEST(DriverWorkarounds, ReadsTheVectorWidthAsMesaDoesAndRefusesWidthsItCannotCom
                           Case{"0400", true, 256, false}, Case{"256bits", true, 256, false},
                           Case{"abc", false, 0, false}, Case{"", false, 0, false}, Case{"512", true, 0, true},
                           Case{"64", true, 0, true}, Case{"0", true, 0, true}, Case{"-128", true, 0, true}}) {
-        const LavapipeSettings s = read(c.value);
-        EXPECT_EQ(s.vectorWidthSet, c.set) << c.value;
-        EXPECT_EQ(s.vectorWidth, c.width) << c.value;
+        LavapipeSettings s = read(c.value);
+        s.shaderCacheDir = s.xdgCacheHome = ""; // the cache's place as in settings(), whatever this process's
+        s.home = "/home/u";
+        EXPECT_EQ(s.vectorWidth.has_value(), c.set) << c.value;
+        // A shader cache of its own for the widths lavapipe runs (as it reads them), none otherwise.
+        const Environment cache = lavapipeEnvironment(s);
+        if (c.width != 0) {
+            EXPECT_EQ(cache, (Environment{{"MESA_SHADER_CACHE_DIR",
+                                           "/home/u/.cache/meadow-lavapipe-" + std::to_string(c.width)}}))
+                << c.value;
+        } else {
+            EXPECT_TRUE(cache.empty()) << c.value;
+        }
         const std::string reason = lavapipeUnsupportedReason(s);
         if (c.refused) {
             EXPECT_EQ(reason.rfind(std::string("LP_NATIVE_VECTOR_WIDTH=") + c.value + ": lavapipe", 0), 0u) << reason;
         } else {
             EXPECT_EQ(reason, "") << c.value;
-        }
-        if (!c.refused && c.width == 0) {
-            EXPECT_TRUE(lavapipeEnvironment(s).empty()) << c.value; // lavapipe's own width: nothing to keep apart
         }
     }
     if (saved)
