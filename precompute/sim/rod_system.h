@@ -107,6 +107,12 @@ class RodSystem {
     std::vector<float> contactLambda_;
     std::vector<glm::vec3> force_;
     std::vector<Capsule> capsules_;
+    // Per capsule pair (i < j, of different rods): whether they touch in the rest pose, and so are
+    // never kept apart (updateContactCandidates), at i * capsules + j. Fixed by the rest pose:
+    // worked out once.
+    std::vector<bool> restTouching_;
+    // Per capsule: its predicted segment's bounds, this step's (step).
+    std::vector<glm::vec3> boundsLo_, boundsHi_;
     std::vector<Candidate> candidates_;
     std::vector<Candidate> active_; // of this step
     float maxPenetration_ = 0.0f;
