@@ -47,7 +47,9 @@ FrameBounds boundsOfFrame(std::span<const uint32_t> indices, std::span<const glm
 
 // Marks every cell whose closed box the triangle touches. Candidate cells are those of the
 // triangle's bounding box, counting a cell whose face the box merely touches (ceil - 1 below,
-// floor above); each is then decided by Akenine-Möller's separating axis test.
+// floor above); each is then decided by Akenine-Möller's separating axis test, unless it is
+// already marked (by this frame's other triangles or an earlier frame's: a clump's frames cover
+// nearly the same cells, and marking is an OR, so the box is the same).
 void markTriangle(VoxelBitBox& box, double cellSize, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
     const glm::dvec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
     const glm::ivec3 first(glm::ceil(lo / cellSize) - 1.0), last(glm::floor(hi / cellSize));
@@ -58,6 +60,8 @@ void markTriangle(VoxelBitBox& box, double cellSize, const glm::dvec3& a, const 
     for (int32_t z = first.z; z <= last.z; ++z)
         for (int32_t x = first.x; x <= last.x; ++x)
             for (int32_t y = first.y; y <= last.y; ++y) {
+                if (box.test({x, y, z}))
+                    continue;
                 const glm::dvec3 centre = (glm::dvec3(x, y, z) + 0.5) * cellSize;
                 if (triangleBoxOverlap(centre, halfSize, a, b, c))
                     box.set({x, y, z});
