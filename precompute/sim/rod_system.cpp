@@ -1,6 +1,7 @@
 #include "sim/rod_system.h"
 
 #include "core/error.h"
+#include "sim/segment_distance.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,37 +27,6 @@ glm::quat minimalRotation(glm::vec3 from, glm::vec3 to) {
     glm::vec3 axis = glm::cross(from, to);
     // Half-angle formula: q = (1 + c, axis) normalised.
     return glm::normalize(glm::quat(1.0f + c, axis.x, axis.y, axis.z));
-}
-
-// Closest points of segments [p0, p1] and [q0, q1] (Ericson, Real-Time Collision Detection 5.1.9).
-float segmentDistance(glm::vec3 p0, glm::vec3 p1, glm::vec3 q0, glm::vec3 q1, float& s, float& t) {
-    glm::vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-    float a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
-    const float eps = 1e-12f;
-    if (a <= eps && e <= eps) {
-        s = t = 0.0f;
-    } else if (a <= eps) {
-        s = 0.0f;
-        t = std::clamp(f / e, 0.0f, 1.0f);
-    } else {
-        float c = glm::dot(d1, r);
-        if (e <= eps) {
-            t = 0.0f;
-            s = std::clamp(-c / a, 0.0f, 1.0f);
-        } else {
-            float b = glm::dot(d1, d2), denom = a * e - b * b;
-            s = denom > eps ? std::clamp((b * f - c * e) / denom, 0.0f, 1.0f) : 0.0f;
-            t = (b * s + f) / e;
-            if (t < 0.0f) {
-                t = 0.0f;
-                s = std::clamp(-c / a, 0.0f, 1.0f);
-            } else if (t > 1.0f) {
-                t = 1.0f;
-                s = std::clamp((b - c) / a, 0.0f, 1.0f);
-            }
-        }
-    }
-    return glm::length((p0 + d1 * s) - (q0 + d2 * t));
 }
 
 } // namespace
@@ -272,12 +242,9 @@ void RodSystem::step(float dt, const AirCoupling& air, float airForceWeight) {
     std::fill(stretchLambda_.begin(), stretchLambda_.end(), 0.0f);
     // The contacts this step can touch: candidates within a few millimetres after prediction
     // (the solver's corrections are far smaller than that).
-    // A pair whose predicted segments' bounds lie farther apart on some axis than that is passed
-    // over before the distance: no two points of the segments are nearer than the gap. The gap
-    // must exceed the limit by kBoundsSlack, far more than the rounding of the distance (a few
-    // ulps of coordinates of about a metre), so the same pairs are active as when every distance
-    // is computed, and the simulation gives the same bytes.
-    constexpr float kBoundsSlack = 1e-4f;
+    // A pair whose predicted segments' bounds lie apart by more than that (segmentBoundsApart) is
+    // passed over before its distance: the same pairs are active as when every distance is
+    // computed, so the simulation gives the same bytes.
     for (size_t i = 0; i < capsules_.size(); ++i) {
         const Capsule& c = capsules_[i];
         boundsLo_[i] = glm::min(predicted_[c.a], predicted_[c.b]);
@@ -286,9 +253,8 @@ void RodSystem::step(float dt, const AirCoupling& air, float airForceWeight) {
     active_.clear();
     for (const Candidate& cand : candidates_) {
         const float limit = cand.threshold + 0.005f;
-        const glm::vec3 gap =
-            glm::max(boundsLo_[cand.first] - boundsHi_[cand.second], boundsLo_[cand.second] - boundsHi_[cand.first]);
-        if (std::max(gap.x, std::max(gap.y, gap.z)) > limit + kBoundsSlack)
+        if (segmentBoundsApart(boundsLo_[cand.first], boundsHi_[cand.first], boundsLo_[cand.second],
+                               boundsHi_[cand.second], limit))
             continue;
         const Capsule& p = capsules_[cand.first];
         const Capsule& q = capsules_[cand.second];
