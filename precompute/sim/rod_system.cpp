@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
+#include <limits>
 
 namespace meadow {
 namespace {
@@ -141,20 +142,45 @@ void RodSystem::updateContactCandidates(float margin) {
         lo[i] = glm::min(position_[c.a], position_[c.b]) - extent;
         hi[i] = glm::max(position_[c.a], position_[c.b]) + extent;
     }
+    // Each rod's capsules (listed together, in rod order: the constructor) bounded as a whole, so
+    // that a capsule meets the capsules of a rod only where it meets the rod's bounds. A rod with
+    // a NaN bound meets every capsule, as each of its capsules would. The pairs come in the same
+    // order as when every pair is tested (i, then j, ascending), the order the contacts are solved.
+    const uint32_t rods = uint32_t(rodFirst_.size());
+    rodCapsuleFirst_.assign(rods + 1, uint32_t(count));
+    for (uint32_t i = uint32_t(count); i-- > 0;)
+        rodCapsuleFirst_[capsules_[i].rod] = i;
+    for (uint32_t r = rods; r-- > 0;)
+        rodCapsuleFirst_[r] = std::min(rodCapsuleFirst_[r], rodCapsuleFirst_[r + 1]);
+    rodLo_.assign(rods, glm::vec3(std::numeric_limits<float>::max()));
+    rodHi_.assign(rods, glm::vec3(std::numeric_limits<float>::lowest()));
+    rodNaN_.assign(rods, 0);
+    for (size_t i = 0; i < count; ++i) {
+        const uint32_t r = capsules_[i].rod;
+        rodLo_[r] = glm::min(rodLo_[r], lo[i]);
+        rodHi_[r] = glm::max(rodHi_[r], hi[i]);
+        if (glm::any(glm::isnan(lo[i])) || glm::any(glm::isnan(hi[i])))
+            rodNaN_[r] = 1;
+    }
+    const auto apart = [](glm::vec3 loA, glm::vec3 hiA, glm::vec3 loB, glm::vec3 hiB) {
+        return glm::any(glm::greaterThan(loA, hiB)) || glm::any(glm::greaterThan(loB, hiA));
+    };
     for (uint32_t i = 0; i < count; ++i) {
-        for (uint32_t j = i + 1; j < count; ++j) {
-            const Capsule& a = capsules_[i];
-            const Capsule& b = capsules_[j];
-            if (a.rod == b.rod)
-                continue; // a blade does not fold onto itself at these curvatures
-            if (glm::any(glm::greaterThan(lo[i], hi[j])) || glm::any(glm::greaterThan(lo[j], hi[i])))
+        const Capsule& a = capsules_[i];
+        // A blade does not fold onto itself at these curvatures: the pairs start at the next rod.
+        for (uint32_t r = a.rod + 1; r < rods; ++r) {
+            if (!rodNaN_[r] && apart(lo[i], hi[i], rodLo_[r], rodHi_[r]))
                 continue;
-            // Parts that already touch in the rest pose (iris leaves sheathe one another at the
-            // base of a fan) are not kept apart: they are modelled as grown together there
-            // (restTouching_, worked out once).
-            if (restTouching_[size_t(i) * count + j])
-                continue;
-            candidates_.push_back({i, j, a.radius + b.radius});
+            for (uint32_t j = rodCapsuleFirst_[r]; j < rodCapsuleFirst_[r + 1]; ++j) {
+                if (apart(lo[i], hi[i], lo[j], hi[j]))
+                    continue;
+                // Parts that already touch in the rest pose (iris leaves sheathe one another at
+                // the base of a fan) are not kept apart: they are modelled as grown together
+                // there (restTouching_, worked out once).
+                if (restTouching_[size_t(i) * count + j])
+                    continue;
+                candidates_.push_back({i, j, a.radius + capsules_[j].radius});
+            }
         }
     }
 }

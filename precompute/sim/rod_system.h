@@ -113,6 +113,11 @@ class RodSystem {
     std::vector<bool> restTouching_;
     // Per capsule: its predicted segment's bounds, this step's (step).
     std::vector<glm::vec3> boundsLo_, boundsHi_;
+    // updateContactCandidates': each rod's first capsule (and the count at the end), its bounds,
+    // and whether a bound is NaN
+    std::vector<uint32_t> rodCapsuleFirst_;
+    std::vector<glm::vec3> rodLo_, rodHi_;
+    std::vector<uint8_t> rodNaN_;
     std::vector<Candidate> candidates_;
     std::vector<Candidate> active_; // of this step
     float maxPenetration_ = 0.0f;
