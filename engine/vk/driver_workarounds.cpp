@@ -12,6 +12,11 @@ std::string environment(const char* name) {
     return value ? value : "";
 }
 
+// The vector widths lavapipe (Mesa 22.3) compiles shaders at without crashing.
+bool lavapipeCompilesAt(long long width) {
+    return width == 128 || width == 256;
+}
+
 } // namespace
 
 LavapipeSettings lavapipeSettingsFromEnvironment() {
@@ -35,7 +40,7 @@ LavapipeSettings lavapipeSettingsFromEnvironment() {
 }
 
 std::vector<std::pair<std::string, std::string>> lavapipeEnvironment(const LavapipeSettings& s) {
-    if (s.vectorWidth != 128 && s.vectorWidth != 256)
+    if (!s.vectorWidth || !lavapipeCompilesAt(*s.vectorWidth))
         return {}; // lavapipe picks its width from the CPU and caps, which Mesa's cache key holds (or
                    // it is refused: lavapipeUnsupportedReason)
     // Mesa's own choice of folder (util/disk_cache_os.c), one level down.
@@ -52,7 +57,7 @@ std::vector<std::pair<std::string, std::string>> lavapipeEnvironment(const Lavap
 std::string lavapipeUnsupportedReason(const LavapipeSettings& s) {
     // Mesa 22.3's values that hide AVX (util/u_cpu_detect.c); it ignores values it does not know.
     static constexpr std::string_view kBelowAvx[] = {"nosse", "sse", "sse2", "sse3", "ssse3", "sse4.1"};
-    if (s.vectorWidth && *s.vectorWidth != 128 && *s.vectorWidth != 256)
+    if (s.vectorWidth && !lavapipeCompilesAt(*s.vectorWidth))
         return "LP_NATIVE_VECTOR_WIDTH=" + s.vectorWidthText + ": lavapipe (Mesa 22.3) compiles shaders at 128 or " +
                "256 bits only, and crashes compiling them at " + std::to_string(*s.vectorWidth) +
                "; unset it or set 128 or 256 (docs/ROBUSTNESS.md)";

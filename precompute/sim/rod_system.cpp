@@ -92,7 +92,9 @@ RodSystem::RodSystem(const std::vector<Rod>& rods, const RodMaterial& material) 
             bendLimitMass_.push_back(ownRigidity && i + 1 < n ? 1.0f / (inverseMass_[a] + inverseMass_[b]) : 0.0f);
             ownMaterial_.push_back(ownRigidity || rod.linearDensity > 0.0f);
         }
-        // Collision capsules: one per segment, plus a flower sphere at each stem tip.
+        // Collision capsules: one per segment, plus a flower sphere at each stem tip, listed rod
+        // by rod (updateContactCandidates relies on it).
+        rodCapsuleFirst_.push_back(uint32_t(capsules_.size()));
         for (size_t i = 0; i + 1 < n; ++i) {
             float radius = rod.kind == RodKind::Stem ? 0.5f * std::max(rod.width[i], rod.width[i + 1])
                                                      : material.leafCapsuleRadius;
@@ -106,6 +108,7 @@ RodSystem::RodSystem(const std::vector<Rod>& rods, const RodMaterial& material) 
     velocity_.assign(rest_.size(), glm::vec3(0.0f));
     force_.assign(rest_.size(), glm::vec3(0.0f));
     stretchLambda_.assign(rest_.size(), 0.0f);
+    rodCapsuleFirst_.push_back(uint32_t(capsules_.size()));
     const size_t count = capsules_.size();
     restTouching_.assign(count * count, false);
     for (size_t i = 0; i < count; ++i)
@@ -147,11 +150,6 @@ void RodSystem::updateContactCandidates(float margin) {
     // a NaN bound meets every capsule, as each of its capsules would. The pairs come in the same
     // order as when every pair is tested (i, then j, ascending), the order the contacts are solved.
     const uint32_t rods = uint32_t(rodFirst_.size());
-    rodCapsuleFirst_.assign(rods + 1, uint32_t(count));
-    for (uint32_t i = uint32_t(count); i-- > 0;)
-        rodCapsuleFirst_[capsules_[i].rod] = i;
-    for (uint32_t r = rods; r-- > 0;)
-        rodCapsuleFirst_[r] = std::min(rodCapsuleFirst_[r], rodCapsuleFirst_[r + 1]);
     rodLo_.assign(rods, glm::vec3(std::numeric_limits<float>::max()));
     rodHi_.assign(rods, glm::vec3(std::numeric_limits<float>::lowest()));
     rodNaN_.assign(rods, 0);

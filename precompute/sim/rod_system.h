@@ -113,9 +113,9 @@ class RodSystem {
     std::vector<bool> restTouching_;
     // Per capsule: its predicted segment's bounds, this step's (step).
     std::vector<glm::vec3> boundsLo_, boundsHi_;
-    // updateContactCandidates': each rod's first capsule (and the count at the end), its bounds,
-    // and whether a bound is NaN
+    // Per rod: its first capsule (and the capsule count at the end)
     std::vector<uint32_t> rodCapsuleFirst_;
+    // updateContactCandidates': each rod's bounds, and whether one of them is NaN
     std::vector<glm::vec3> rodLo_, rodHi_;
     std::vector<uint8_t> rodNaN_;
     std::vector<Candidate> candidates_;
